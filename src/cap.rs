@@ -1,0 +1,288 @@
+//! Sub-hemispherical (cap) lights and spherical lights, Lambertian: exact (Snyder eq. 6) and
+//! Snyder's two-segment Hermite approximation (section 2.2).
+//!
+//! A cap of half-angle `sigma` in [0, pi/2] around `axis` radiates 1 toward every direction `u`
+//! with `u.axis >= cos sigma`. A sphere of radius `r` at distance `d` from the shading point is
+//! the cap with `sin sigma = r/d` (eq. 7) around the direction to its centre.
+//!
+//! ## The exact model in a stable form
+//!
+//! With `c = cos w = n.axis`, `cs = cos sigma`, `ss = sin sigma`, Snyder's eq. 6 has three
+//! cases: fully visible (`c >= ss`) `E = c ss^2`; fully below the horizon (`c <= -ss`) `E = 0`;
+//! and the fillet in between, which he writes with `gamma = asin(cs / sin w)` and two arc sines.
+//! Substituting `sin gamma = cs/s` and using `ss^2 s^2 - cs^2 c^2 = ss^2 - c^2`, the fillet
+//! reduces to
+//!
+//! ```text
+//! pi E = c ss^2 atan2(q, -cs c) - cs q + atan2(q, cs),     q = sqrt((ss - c)(ss + c))
+//! ```
+//!
+//! which needs neither `w` nor `sin w`, is continuous at both ends (`q = 0` gives `c ss^2` at
+//! `c = ss` and 0 at `c = -ss`), and has no division, so it is well conditioned everywhere,
+//! including `sigma = pi/2` (`cs = 0`) and `sigma = 0`. It is the same integral; the tests check
+//! it against quadrature of the definition, not against Snyder's form.
+//!
+//! ## The Hermite approximation
+//!
+//! Snyder replaces the fillet `w` in [pi/2 - sigma, pi/2 + sigma] by two cubic Hermite segments
+//! split at `w = pi/2`, with the end values and slopes
+//! `E(pi/2 - sigma) = ss^3`, `E' = -cs ss^2`; `E(pi/2) = (sigma - cs ss)/pi`, `E' = -ss^2/2`;
+//! `E(pi/2 + sigma) = 0`, `E' = 0`. It needs `w = acos(c)` per sample. Its error against the
+//! exact model is measured in `tests/cap.rs` and tabulated in the README.
+
+use crate::{Error, Real, Vec3};
+
+/// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma`, `ss = sin sigma`.
+#[inline]
+pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
+    if c >= ss {
+        (c * ss * ss).clamp01()
+    } else if c <= -ss {
+        T::ZERO
+    } else {
+        let q = ((ss - c) * (ss + c)).sqrt();
+        let pi_e = c * ss * ss * q.atan2(-cs * c) - cs * q + q.atan2(cs);
+        (pi_e * T::FRAC_1_PI).clamp01()
+    }
+}
+
+/// The two Hermite cubics of Snyder's approximation for one `sigma`, as coefficients of
+/// `g(y) = ((a y + b) y + c) y + d` on each segment, `y` in [0, 1].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct HermiteFillet<T> {
+    sigma: T,
+    cs: T,
+    ss2: T,
+    lo: [T; 4],
+    hi: [T; 4],
+}
+
+/// Cubic Hermite coefficients on [0, 1] from end values and end slopes (already scaled by the
+/// interval length): Snyder's `a, b, c, d`.
+#[inline]
+fn hermite_coeffs<T: Real>(g0: T, g1: T, d0: T, d1: T) -> [T; 4] {
+    let three = T::from_f64(3.0);
+    [
+        d1 + d0 - T::TWO * (g1 - g0),
+        three * (g1 - g0) - d1 - T::TWO * d0,
+        d0,
+        g0,
+    ]
+}
+
+impl<T: Real> HermiteFillet<T> {
+    #[inline]
+    pub(crate) fn new(sigma: T, cs: T, ss: T) -> Self {
+        let ss2 = ss * ss;
+        let h = sigma;
+        let e_mid = (sigma - cs * ss) * T::FRAC_1_PI;
+        let lo = hermite_coeffs(ss2 * ss, e_mid, -h * cs * ss2, -h * T::HALF * ss2);
+        let hi = hermite_coeffs(e_mid, T::ZERO, -h * T::HALF * ss2, T::ZERO);
+        HermiteFillet {
+            sigma,
+            cs,
+            ss2,
+            lo,
+            hi,
+        }
+    }
+
+    /// The approximation at `c = cos w`, `w` (both of the same direction).
+    #[inline]
+    pub(crate) fn eval(&self, c: T, w: T) -> T {
+        let lo_end = T::FRAC_PI_2 - self.sigma;
+        if w <= lo_end {
+            return (c * self.ss2).clamp01();
+        }
+        if w >= T::FRAC_PI_2 + self.sigma || !(self.sigma > T::ZERO) {
+            return T::ZERO;
+        }
+        let (k, y) = if w <= T::FRAC_PI_2 {
+            (&self.lo, (w - lo_end) / self.sigma)
+        } else {
+            (&self.hi, (w - T::FRAC_PI_2) / self.sigma)
+        };
+        (((k[0] * y + k[1]) * y + k[2]) * y + k[3]).clamp01()
+    }
+}
+
+/// A cap light: unit radiance within `sigma` of `axis` (an infinitely distant disc of fixed
+/// angular size, e.g. the sun).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CapLight<T> {
+    axis: Vec3<T>,
+    sigma: T,
+    cos_sigma: T,
+    sin_sigma: T,
+    hermite: HermiteFillet<T>,
+}
+
+impl<T: Real> CapLight<T> {
+    /// A cap around `axis` (any length) of half-angle `sigma` in [0, pi/2].
+    ///
+    /// Computes `cos sigma`, `sin sigma` and the Hermite coefficients once, here.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] / [`Error::ZeroLength`] for `axis`; [`Error::NotFinite`] or
+    /// [`Error::SigmaOutOfRange`] for `sigma`.
+    pub fn new(axis: Vec3<T>, sigma: T) -> Result<Self, Error> {
+        let axis = axis.try_normalize("axis")?;
+        if !sigma.is_finite() {
+            return Err(Error::NotFinite("sigma"));
+        }
+        if !(sigma >= T::ZERO && sigma <= T::FRAC_PI_2) {
+            return Err(Error::SigmaOutOfRange);
+        }
+        let (cs, ss) = (sigma.cos().clamp01(), sigma.sin().clamp01());
+        Ok(CapLight {
+            axis,
+            sigma,
+            cos_sigma: cs,
+            sin_sigma: ss,
+            hermite: HermiteFillet::new(sigma, cs, ss),
+        })
+    }
+
+    /// The unit axis.
+    pub fn axis(&self) -> Vec3<T> {
+        self.axis
+    }
+    /// The half-angle sigma.
+    pub fn sigma(&self) -> T {
+        self.sigma
+    }
+    pub(crate) fn cos_sin_sigma(&self) -> (T, T) {
+        (self.cos_sigma, self.sin_sigma)
+    }
+
+    /// `[cap_lambert]`: exact Lambertian irradiance, normalized (in [0, 1]).
+    ///
+    /// Accuracy: see the README's table (f64 against quadrature, f32 against f64).
+    /// Cost: 1 normalization and 1 dot product; in the fillet also 1 sqrt and 2 atan2.
+    /// Fallback: 0 for a zero or non-finite `n`.
+    #[inline]
+    pub fn lambert(&self, n: Vec3<T>) -> T {
+        match n.normalize() {
+            Some(n) => cap_lambert_from_cos(n.dot(self.axis), self.cos_sigma, self.sin_sigma),
+            None => T::ZERO,
+        }
+    }
+
+    /// `[cap_lambert_hermite]`: Snyder's two-segment Hermite approximation of
+    /// [`CapLight::lambert`]; its error against the exact model is tabulated in the README.
+    ///
+    /// Cost: 1 normalization, 1 cross product, 1 sqrt, 1 atan2, a cubic.
+    /// Fallback: 0 for a zero or non-finite `n`.
+    #[inline]
+    pub fn lambert_hermite(&self, n: Vec3<T>) -> T {
+        match crate::hemisphere::angle_to(n, self.axis) {
+            Some((c, _, w)) => self.hermite.eval(c, w),
+            None => T::ZERO,
+        }
+    }
+}
+
+/// A spherical light of unit radiance: `radius` at `center`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereLight<T> {
+    center: Vec3<T>,
+    radius: T,
+}
+
+/// Per-sample cap of a sphere seen from `p`: `(axis, cos sigma, sin sigma)`.
+pub(crate) struct SphereCap<T> {
+    pub(crate) axis: Vec3<T>,
+    pub(crate) cs: T,
+    pub(crate) ss: T,
+}
+
+impl<T: Real> SphereLight<T> {
+    /// A sphere of `radius` > 0 at `center`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for either parameter, [`Error::RadiusNotPositive`].
+    pub fn new(center: Vec3<T>, radius: T) -> Result<Self, Error> {
+        if !center.is_finite() {
+            return Err(Error::NotFinite("center"));
+        }
+        if !radius.is_finite() {
+            return Err(Error::NotFinite("radius"));
+        }
+        if !(radius > T::ZERO) {
+            return Err(Error::RadiusNotPositive);
+        }
+        Ok(SphereLight { center, radius })
+    }
+
+    /// The centre.
+    pub fn center(&self) -> Vec3<T> {
+        self.center
+    }
+    /// The radius.
+    pub fn radius(&self) -> T {
+        self.radius
+    }
+
+    /// The cap the sphere subtends at `p` (eq. 7).
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for `p`, [`Error::PointInsideSphere`].
+    #[inline]
+    pub(crate) fn cap_at(&self, p: Vec3<T>) -> Result<SphereCap<T>, Error> {
+        if !p.is_finite() {
+            return Err(Error::NotFinite("p"));
+        }
+        let (axis, d) = (self.center - p)
+            .normalize_with_length()
+            .ok_or(Error::PointInsideSphere)?;
+        if !(d > self.radius) {
+            return Err(Error::PointInsideSphere);
+        }
+        let ss = (self.radius / d).clamp01();
+        let cs = ((T::ONE - ss) * (T::ONE + ss)).sqrt();
+        Ok(SphereCap { axis, cs, ss })
+    }
+
+    /// `[sphere_lambert]` with precise errors: see [`SphereLight::lambert`].
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for `p` or `n`, [`Error::ZeroLength`] for `n`,
+    /// [`Error::PointInsideSphere`].
+    pub fn try_lambert(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
+        let cap = self.cap_at(p)?;
+        let n = n.try_normalize("n")?;
+        Ok(cap_lambert_from_cos(n.dot(cap.axis), cap.cs, cap.ss))
+    }
+
+    /// `[sphere_lambert]`: exact Lambertian irradiance at `p` with normal `n`, normalized.
+    ///
+    /// Accuracy: see the README's table. Cost: 2 normalizations, 1 division, 1 sqrt; in the
+    /// fillet also 1 sqrt and 2 atan2. Fallback: 0 for a point inside or on the sphere, or a
+    /// zero or non-finite input.
+    #[inline]
+    pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
+        self.try_lambert(p, n).unwrap_or(T::ZERO)
+    }
+
+    /// `[sphere_lambert_hermite]` with precise errors: see [`SphereLight::lambert_hermite`].
+    ///
+    /// # Errors
+    /// As [`SphereLight::try_lambert`].
+    pub fn try_lambert_hermite(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
+        let cap = self.cap_at(p)?;
+        let n = n.try_normalize("n")?;
+        let sigma = cap.ss.atan2(cap.cs);
+        let (c, _, w) = crate::hemisphere::angle_to(n, cap.axis).ok_or(Error::ZeroLength("n"))?;
+        Ok(HermiteFillet::new(sigma, cap.cs, cap.ss).eval(c, w))
+    }
+
+    /// `[sphere_lambert_hermite]`: Snyder's Hermite approximation with sigma from the sphere
+    /// (the cubics are rebuilt per sample, since sigma changes with `p`).
+    ///
+    /// Cost: that of [`SphereLight::lambert`] plus 2 atan2 and ~20 multiply-adds.
+    /// Fallback: as [`SphereLight::lambert`].
+    #[inline]
+    pub fn lambert_hermite(&self, p: Vec3<T>, n: Vec3<T>) -> T {
+        self.try_lambert_hermite(p, n).unwrap_or(T::ZERO)
+    }
+}

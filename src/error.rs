@@ -1,0 +1,65 @@
+//! The one error type of the crate's constructors and `try_` functions.
+
+use core::fmt;
+
+/// Why an input was rejected (the list of `../shared/spec/models.md`, "Inputs that are not valid").
+///
+/// Variants that carry a `&'static str` name the offending parameter as the eval protocol and
+/// the spec spell it (`"n"`, `"axis"`, `"verts"`, ...).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Error {
+    /// A NaN or infinity in the named parameter.
+    NotFinite(&'static str),
+    /// The named direction parameter has zero length.
+    ZeroLength(&'static str),
+    /// A polygon with fewer than 3 vertices.
+    TooFewVertices,
+    /// A polygon with more vertices than the light's const-generic capacity.
+    TooManyVertices {
+        /// The capacity `N` of the polygon type.
+        capacity: usize,
+    },
+    /// A polygon of zero area (collinear or coincident vertices).
+    ZeroArea,
+    /// A polygon whose vertices are not in one plane (to within 1e-6 of its size).
+    NotPlanar,
+    /// A polygon whose edges cross (not simple).
+    NotSimple,
+    /// A sphere radius that is not > 0.
+    RadiusNotPositive,
+    /// A shading point inside or on a sphere light.
+    PointInsideSphere,
+    /// A cap half-angle sigma outside [0, pi/2].
+    SigmaOutOfRange,
+    /// A disc half-angle alpha outside [0, pi].
+    AlphaOutOfRange,
+    /// A Phong exponent too large for the crate (more than [`crate::phong::MAX_EXPONENT`]).
+    ExponentOutOfRange,
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::NotFinite(p) => write!(f, "{p} is not finite (NaN or infinity)"),
+            Error::ZeroLength(p) => write!(f, "{p} has zero length"),
+            Error::TooFewVertices => f.write_str("polygon has fewer than 3 vertices"),
+            Error::TooManyVertices { capacity } => {
+                write!(
+                    f,
+                    "polygon has more than {capacity} vertices (the light's capacity)"
+                )
+            }
+            Error::ZeroArea => f.write_str("polygon has zero area"),
+            Error::NotPlanar => f.write_str("polygon is not planar (to within 1e-6 of its size)"),
+            Error::NotSimple => f.write_str("polygon is not simple (edges cross)"),
+            Error::RadiusNotPositive => f.write_str("sphere radius is not > 0"),
+            Error::PointInsideSphere => f.write_str("shading point is inside or on the sphere"),
+            Error::SigmaOutOfRange => f.write_str("sigma is outside [0, pi/2]"),
+            Error::AlphaOutOfRange => f.write_str("alpha is outside [0, pi]"),
+            Error::ExponentOutOfRange => f.write_str("Phong exponent m is too large"),
+        }
+    }
+}
+
+impl core::error::Error for Error {}

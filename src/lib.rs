@@ -1,0 +1,60 @@
+//! # arealight
+//!
+//! Analytic area-light shading for microcontrollers and software rasterizers: the closed forms
+//! of Snyder's "Area Light Sources for Real-Time Graphics" (MSR-TR-96-11) and the SH9
+//! irradiance of Ramamoorthi and Hanrahan, written once over a scalar trait ([`Real`]) and
+//! instantiated for `f64` (the reference), `f32` and [`Fast32`] (f32 with cheap `sqrt`/`atan2`).
+//!
+//! `#![no_std]`, no allocation, no `unsafe`, no panics: constructors validate and return
+//! [`Result`]; per-sample functions return a documented finite fallback (0) for inputs that
+//! have no value, and never NaN or infinity.
+//!
+//! Every model is defined by the integral it evaluates (`shared/spec/models.md` in the project)
+//! and tested against an independent numerical quadrature of that integral (`tests/`).
+//!
+//! | model id | type and method | source |
+//! |---|---|---|
+//! | `hemi_const`, `hemi_cos` | [`HemisphereLight::lambert_const`], [`HemisphereLight::lambert_cos`] | Snyder eq. 4, 5 |
+//! | `sky_overcast` | [`OvercastSky::lambert`] | Snyder 2.1.3 |
+//! | `sky_ground` | [`SkyGround::irradiance`] | June eq. 20.7 |
+//! | `cap_lambert`, `cap_lambert_hermite` | [`CapLight::lambert`], [`CapLight::lambert_hermite`] | Snyder eq. 6, 2.2 |
+//! | `sphere_lambert`, `sphere_lambert_hermite` | [`SphereLight::lambert`], [`SphereLight::lambert_hermite`] | Snyder eq. 6, 7 |
+//! | `polygon_lambert` | [`PolygonLight::lambert`] | Snyder eq. 8, Iwanicki |
+//! | `phong_hemi_const`, `phong_hemi_cos` | [`HemisphereLight::phong_const`], [`HemisphereLight::phong_cos`] | Snyder eq. 14, 15 |
+//! | `phong_cap`, `phong_sphere` | [`CapLight::phong`], [`SphereLight::phong`] | Snyder eq. 24 |
+//! | `phong_polygon` | [`PolygonLight::phong`] | Snyder eq. 25, Arvo 5.1 |
+//! | `sh9_irradiance`, `sh9_disc_irradiance` | [`Sh9::prepare`] then [`Sh9Irradiance::irradiance`]; [`Sh9::disc`] | June eq. 20.24-20.33 |
+//!
+//! ```
+//! use arealight::{CapLight, PhongLobe, Vec3};
+//! // The sun: a cap of half-angle 0.27 degrees, straight up.
+//! let sun = CapLight::<f32>::new(Vec3::new(0.0, 0.0, 1.0), 0.0047).unwrap();
+//! let n = Vec3::new(0.0, 0.6, 0.8);
+//! let e = sun.lambert(n); // normalized irradiance: cos(w) sin^2(sigma) when fully visible
+//! assert!((e - 0.8 * 0.0047f32.sin().powi(2)).abs() < 1e-9);
+//! let lobe = PhongLobe::new(32).unwrap();
+//! let _spec = sun.phong(&lobe, n);
+//! ```
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+#![warn(clippy::all)]
+
+pub mod cap;
+pub mod error;
+pub mod hemisphere;
+pub mod phong;
+pub mod polygon;
+pub mod real;
+pub mod sh9;
+pub mod sine_power;
+pub mod vec3;
+
+pub use cap::{CapLight, SphereLight};
+pub use error::Error;
+pub use hemisphere::{HemisphereLight, OvercastSky, SkyGround};
+pub use phong::PhongLobe;
+pub use polygon::PolygonLight;
+pub use real::{Fast32, Real};
+pub use sh9::{Environment, Sh9, Sh9Irradiance};
+pub use vec3::{Rgb, Vec3};

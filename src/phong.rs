@@ -1,0 +1,353 @@
+//! Phong illumination from area lights (Snyder section 3): hemisphere (eq. 14, 15), cap and
+//! sphere (eq. 24, appendices D-F) and polygon (eq. 25, appendices G-H) lights.
+//!
+//! The model is `I = ((m + 1)/(2 pi)) integral of L(u) ((u.r)+)^m du` with `r` the reflection
+//! direction: Snyder's, with no `(n.u)` factor and no clipping to the hemisphere around `n`.
+//! A hemisphere of unit radiance around `r` gives 1, and `m = 1`, `r = n` is the Lambertian model
+//! of the same source.
+//!
+//! ## Odd and even exponents
+//!
+//! By Stokes' theorem (Snyder appendix C) the integral becomes a sum of boundary integrals
+//! `J(k)` of the source's projection, `k = m, m - 2, ...`, plus, for even `m`, the solid angle
+//! `I(0)` of the projection clipped to the hemisphere around `r`. Snyder restricts `m` to odd
+//! values to avoid `I(0)`; here even `m` is exact too: the clipped solid angle of a cap is closed
+//! form (below) and that of a polygon is the fan of Van Oosterom-Strackee triangles
+//! (Arvo 5.1, [`crate::polygon`]). [`PhongLobe::odd_only`] keeps Snyder's fast path (an even
+//! exponent is evaluated as the next odd one) as an opt-in.
+//!
+//! ## Hemisphere lights
+//!
+//! `I_const = 1 - S(m, w)/S(m, pi)` (eq. 14) and
+//! `I_cos = (m + 1)/((m + 2) S(m + 1, pi)) [sin^(m+2)(w)/(m + 1) + cos w (S(m + 1, pi) - S(m + 1, w))]`
+//! (eq. 15), with [`S`](crate::sine_power). We use `S(k, pi) - S(k, w) = S(k, pi - w)` for
+//! `w > pi/2`, so the recurrence always integrates the smaller side (no cancellation near
+//! `w = pi`).
+//!
+//! ## Caps and spheres, rewritten for stability
+//!
+//! On the cap's boundary `z = a + b cos(phi)` with `a = cos(sigma) cos(w)`, `b = -sin(sigma) sin(w)`
+//! (eq. 19). Snyder integrates `(a + b cos phi)^k` and `(a + b cos phi)^k cos phi` from
+//! `phi_1 = acos(-a/b)` to `2 pi - phi_1` as differences of the recurrences of appendix D from 0.
+//! For large `k` and `w > pi/2` those two partial integrals are dominated by the part of the
+//! boundary *below* the horizon, where `|z|` is largest, and their difference cancels. By the
+//! symmetry `phi -> 2 pi - phi` and the substitution `phi = pi - psi`, the same quantities are
+//!
+//! ```text
+//! F_sum(phi_2) - F_sum(phi_1) =  2 F_sum(a, -b, x),   G_sum(phi_2) - G_sum(phi_1) = -2 G_sum(a, -b, x)
+//! ```
+//!
+//! with `x = pi - phi_1`, integrating only over the visible arc. With `ss = sin sigma`,
+//! `cs = cos sigma`, `c = cos w` and `q = sqrt(ss^2 - c^2)`, everything reduces to one arc
+//! tangent: `x = atan2(q, -cs c)`, `sin x = q/(ss sin w)`, `cos x = -cs c/(ss sin w)`; the horizon arc
+//! of the odd case is `K = 2 atan2(q, cs)` (eq. 23), and the clipped solid angle of the even case
+//! is `I(0) = 2 pi - 2 atan2(q, c) - 2 cs x` (the area of a cap cut by a great circle). When the
+//! cap is wholly above the horizon `x = pi` and `I(0) = 2 pi (1 - cs)`.
+
+use crate::cap::{CapLight, SphereLight};
+use crate::hemisphere::HemisphereLight;
+use crate::polygon::{for_each_clipped_edge, PolygonLight, SolidAngleFan};
+use crate::sine_power::{sine_power_integral, sine_power_integral_pi};
+use crate::{Error, Real, Vec3};
+
+/// The largest Phong exponent accepted: every model's cost is O(m), so this bounds the time a
+/// sample can take (about a million multiply-adds).
+pub const MAX_EXPONENT: u32 = 1 << 20;
+
+/// A Phong lobe: the exponent and its per-material constants `S(m, pi)`, `S(m + 1, pi)`,
+/// computed once (in f64, then rounded to `T`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhongLobe<T> {
+    requested: u32,
+    m: u32,
+    s_m_pi: T,
+    s_m1_pi: T,
+    hemi_cos_scale: T,
+}
+
+impl<T: Real> PhongLobe<T> {
+    /// The exact lobe of exponent `m` (odd or even).
+    ///
+    /// # Errors
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    pub fn new(m: u32) -> Result<Self, Error> {
+        Self::build(m, m)
+    }
+
+    /// Snyder's odd-only fast path: an even `m` is evaluated as `m + 1` (no solid angle, one
+    /// arc tangent fewer per cap sample and one fan term fewer per polygon edge). An
+    /// approximation for even `m`; exact for odd `m`.
+    ///
+    /// # Errors
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    pub fn odd_only(m: u32) -> Result<Self, Error> {
+        Self::build(m, m | 1)
+    }
+
+    fn build(requested: u32, m: u32) -> Result<Self, Error> {
+        if requested > MAX_EXPONENT {
+            return Err(Error::ExponentOutOfRange);
+        }
+        let s_m = sine_power_integral_pi::<f64>(m);
+        let s_m1 = sine_power_integral_pi::<f64>(m + 1);
+        let mf = m as f64;
+        Ok(PhongLobe {
+            requested,
+            m,
+            s_m_pi: T::from_f64(s_m),
+            s_m1_pi: T::from_f64(s_m1),
+            hemi_cos_scale: T::from_f64((mf + 1.0) / ((mf + 2.0) * s_m1)),
+        })
+    }
+
+    /// The exponent asked for.
+    pub fn exponent(&self) -> u32 {
+        self.requested
+    }
+    /// The exponent evaluated (differs only for [`PhongLobe::odd_only`] with an even `m`).
+    pub fn evaluated_exponent(&self) -> u32 {
+        self.m
+    }
+}
+
+impl<T: Real> HemisphereLight<T> {
+    /// `[phong_hemi_const]`: Phong illumination from the constant-weighted hemisphere (Snyder
+    /// eq. 14), normalized (in [0, 1]); `r` is the reflection direction (any length).
+    ///
+    /// Accuracy: see the README's table. Cost: 1 normalization, 1 cross product, 1 sqrt,
+    /// (1 atan2 for even m), and `m/2` recurrence steps. Fallback: 0 for a zero or non-finite `r`.
+    #[inline]
+    pub fn phong_const(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
+        let Some(r) = r.normalize() else {
+            return T::ZERO;
+        };
+        let c = r.dot(self.axis()).clamp(-T::ONE, T::ONE);
+        let s = r.cross(self.axis()).length().min(T::ONE);
+        let m = lobe.m;
+        // x only matters for even m (S starts from S(0, x) = x).
+        let w = if m & 1 == 0 { s.atan2(c) } else { T::ZERO };
+        let v = if c >= T::ZERO {
+            T::ONE - sine_power_integral(m, w, s, c) / lobe.s_m_pi
+        } else {
+            sine_power_integral(m, T::PI - w, s, -c) / lobe.s_m_pi
+        };
+        v.clamp01()
+    }
+
+    /// `[phong_hemi_cos]`: Phong illumination from the cosine-weighted hemisphere (Snyder
+    /// eq. 15), in [0, 1].
+    ///
+    /// Accuracy: see the README's table. Cost: that of [`HemisphereLight::phong_const`] plus a
+    /// power by squaring.
+    /// Fallback: 0 for a zero or non-finite `r`.
+    #[inline]
+    pub fn phong_cos(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
+        let Some(r) = r.normalize() else {
+            return T::ZERO;
+        };
+        let c = r.dot(self.axis()).clamp(-T::ONE, T::ONE);
+        let s = r.cross(self.axis()).length().min(T::ONE);
+        let m = lobe.m;
+        let k = m + 1;
+        let w = if k & 1 == 0 { s.atan2(c) } else { T::ZERO };
+        // S(k, pi - w) = integral of sin^k over [w, pi].
+        let tail = if c >= T::ZERO {
+            lobe.s_m1_pi - sine_power_integral(k, w, s, c)
+        } else {
+            sine_power_integral(k, T::PI - w, s, -c)
+        };
+        let v = lobe.hemi_cos_scale * (s.powu(m + 2) / T::from_u32(k) + c * tail);
+        v.clamp01()
+    }
+}
+
+/// Snyder's eq. 24 in the stable form of the module docs, from `c = cos w`, `s = sin w`
+/// (`w` between `r` and the cap axis), `cs`, `ss`.
+fn phong_cap_from_angle<T: Real>(m: u32, c: T, s: T, cs: T, ss: T) -> T {
+    if c <= -ss {
+        return T::ZERO;
+    }
+    let full = c >= ss;
+    // x = pi - phi_1 and its sine; q = sqrt(ss^2 - c^2).
+    let (x, sin_x, q) = if full {
+        (T::PI, T::ZERO, T::ZERO)
+    } else {
+        let q = ((ss - c) * (ss + c)).sqrt();
+        let den = ss * s;
+        let x = q.atan2(-cs * c);
+        if den > T::TINY {
+            (x, (q / den).clamp01(), q)
+        } else {
+            (x, x.sin(), q)
+        }
+    };
+    let mut total = T::ZERO;
+    if m >= 1 {
+        // F, G recurrences of appendix D for (A, B) = (a, -b) at x; the boundary term
+        // (A + B cos x)^i sin x vanishes (sin x = 0 or A + B cos x = 0).
+        let a = cs * c;
+        let b = ss * s;
+        let mut f = x;
+        let mut g = sin_x;
+        let parity = (m - 1) & 1;
+        let (mut fsum, mut gsum) = if parity == 0 {
+            (f, g)
+        } else {
+            (T::ZERO, T::ZERO)
+        };
+        for i in 1..m {
+            let fi = T::from_u32(i);
+            let f_new = a * f + b * g;
+            let g_new = fi * (b * f + a * g) / (fi + T::ONE);
+            f = f_new;
+            g = g_new;
+            if i & 1 == parity {
+                fsum += f;
+                gsum += g;
+            }
+        }
+        // ss (d dF + c' dG) with d = ss c, c' = cs s, dF = 2 fsum, dG = -2 gsum.
+        total = T::TWO * ss * (ss * c * fsum - cs * s * gsum);
+    }
+    let e = if m & 1 == 0 {
+        if full {
+            T::TAU * (T::ONE - cs)
+        } else {
+            T::TAU - T::TWO * q.atan2(c) - T::TWO * cs * x
+        }
+    } else if full {
+        T::ZERO
+    } else {
+        T::TWO * q.atan2(cs)
+    };
+    ((total + e) * T::FRAC_1_TAU).clamp01()
+}
+
+impl<T: Real> CapLight<T> {
+    /// `[phong_cap]`: Phong illumination from the cap (Snyder eq. 24), in [0, 1].
+    ///
+    /// Accuracy: see the README's table. Cost: 1 normalization, 1 cross product, 1 sqrt; if the
+    /// cap crosses the horizon of `r` also 1 sqrt, 1-2 atan2, 1 division; then `m - 1`
+    /// recurrence steps of ~8 operations. Fallback: 0 for a zero or non-finite `r`.
+    #[inline]
+    pub fn phong(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
+        let Some(r) = r.normalize() else {
+            return T::ZERO;
+        };
+        let (cs, ss) = self.cos_sin_sigma();
+        let c = r.dot(self.axis()).clamp(-T::ONE, T::ONE);
+        let s = r.cross(self.axis()).length().min(T::ONE);
+        phong_cap_from_angle(lobe.m, c, s, cs, ss)
+    }
+}
+
+impl<T: Real> SphereLight<T> {
+    /// `[phong_sphere]` with precise errors: see [`SphereLight::phong`].
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`,
+    /// [`Error::PointInsideSphere`].
+    pub fn try_phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
+        let cap = self.cap_at(p)?;
+        let r = r.try_normalize("r")?;
+        let c = r.dot(cap.axis).clamp(-T::ONE, T::ONE);
+        let s = r.cross(cap.axis).length().min(T::ONE);
+        Ok(phong_cap_from_angle(lobe.m, c, s, cap.cs, cap.ss))
+    }
+
+    /// `[phong_sphere]`: Phong illumination at `p` from the sphere (the cap of eq. 7), in [0, 1].
+    ///
+    /// Cost: that of [`CapLight::phong`] plus 1 normalization, 1 division, 1 sqrt.
+    /// Fallback: 0 for a point inside or on the sphere or a zero or non-finite input.
+    #[inline]
+    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
+        self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
+    }
+}
+
+/// `T_sum(a, b, n, x)` of Snyder appendix G: the sum of `T(a, b, k, x) = integral from 0 to x
+/// of (a cos t + b sin t)^k dt` over `k = n, n - 2, ...` down to 0 or 1.
+#[inline]
+fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b: T) -> T {
+    let f = a * a + b * b;
+    let g = a * cos_x + b * sin_x;
+    let g2 = g * g;
+    let a2 = a * a;
+    let h = a * sin_x - b * cos_x;
+    let (mut t, mut l, mut l2, start) = if n & 1 == 1 {
+        (h + b, g2 * h, b * a2, 1)
+    } else {
+        (x, g * h, b * a, 0)
+    };
+    let mut sum = t;
+    let mut i = start + 2;
+    while i <= n {
+        t = (l + l2 + f * T::from_u32(i - 1) * t) / T::from_u32(i);
+        l *= g2;
+        l2 *= a2;
+        sum += t;
+        i += 2;
+    }
+    sum
+}
+
+impl<T: Real, const N: usize> PolygonLight<T, N> {
+    /// `[phong_polygon]` with precise errors: see [`PolygonLight::phong`].
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`.
+    pub fn try_phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
+        if !p.is_finite() {
+            return Err(Error::NotFinite("p"));
+        }
+        let r = r.try_normalize("r")?;
+        if self.in_plane(p) {
+            return Ok(T::ZERO);
+        }
+        let m = lobe.m;
+        let even = m & 1 == 0;
+        let mut sum = T::ZERO;
+        let mut fan = SolidAngleFan::new();
+        for_each_clipped_edge(self.vertices(), p, r, |a, b, horizon| {
+            if even {
+                fan.add(a, b);
+            }
+            if m == 0 {
+                return;
+            }
+            let g = a.cross(b);
+            let sin_x = g.length();
+            if !(sin_x > T::EPSILON) {
+                return; // A vanishing edge: x ~ sin x ~ 0 contributes nothing.
+            }
+            let gu = g * (T::ONE / sin_x);
+            let cos_x = a.dot(b);
+            let x = sin_x.atan2(cos_x);
+            let rg = r.dot(gu);
+            if horizon {
+                // On the horizon r.a = r.(gu x a) = 0: only the k = 0 term (odd m) survives.
+                if !even {
+                    sum += x * rg;
+                }
+                return;
+            }
+            let perp = gu.cross(a);
+            sum += rg * cos_sin_power_integral_sum(m - 1, x, cos_x, sin_x, r.dot(a), r.dot(perp));
+        });
+        if even {
+            sum += fan.total();
+        }
+        Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
+    }
+
+    /// `[phong_polygon]`: Phong illumination at `p` from the polygon (Snyder eq. 25), clipped to
+    /// the hemisphere around `r`, in [0, 1].
+    ///
+    /// Accuracy: see the README's table. Cost per edge: that of [`PolygonLight::lambert`] plus
+    /// 2 cross products and `m/2` recurrence steps of ~6 operations (plus 1 atan2 for even m).
+    /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane.
+    #[inline]
+    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
+        self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
+    }
+}

@@ -1,0 +1,259 @@
+//! The crate's scalar trait: every model is written once over [`Real`].
+//!
+//! Three scalar types implement it today:
+//!
+//! | type | what it is | sqrt / atan2 / sin / cos |
+//! |---|---|---|
+//! | `f64` | the reference | `libm` (correctly rounded sqrt, atan2 within 1 ULP) |
+//! | `f32` | the firmware float path | `libm` (`sqrtf`, `atan2f`, ...) |
+//! | [`Fast32`] | f32 with the crate's own cheap approximations | see [`fast32`](crate::real::fast32) |
+//!
+//! The trait is sealed: the crate's models rely on the error bounds of each backend, which are
+//! stated and tested here, so only this crate implements it. The fixed-point types of the
+//! FPU-less path are added to the same trait, so no model is written twice per type.
+//!
+//! Constants are associated `const`s and literals go through [`Real::from_f64`], which every
+//! implementation marks `#[inline(always)]` so that a literal argument folds at compile time.
+
+use core::fmt::Debug;
+use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+pub mod fast32;
+pub use fast32::Fast32;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+    impl Sealed for super::Fast32 {}
+}
+
+/// A real-number type the models are generic over (sealed; see the module docs).
+///
+/// Every method is total: it never panics. Methods whose mathematical domain is restricted
+/// (`sqrt`, `acos`) document what they return outside it.
+pub trait Real:
+    sealed::Sealed
+    + Copy
+    + Debug
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// 2.
+    const TWO: Self;
+    /// 1/2.
+    const HALF: Self;
+    /// pi.
+    const PI: Self;
+    /// pi/2.
+    const FRAC_PI_2: Self;
+    /// 2 pi.
+    const TAU: Self;
+    /// 1/pi.
+    const FRAC_1_PI: Self;
+    /// 1/(2 pi).
+    const FRAC_1_TAU: Self;
+    /// Machine epsilon (the spacing of values just above 1).
+    const EPSILON: Self;
+    /// The smallest positive value whose square and reciprocal square are both finite and
+    /// normal; lengths below it are treated as zero.
+    const TINY: Self;
+
+    /// Converts an `f64` (rounding to nearest). Used for literals; folds at compile time.
+    fn from_f64(x: f64) -> Self;
+    /// Converts a small integer exactly (exact for |x| < 2^24 on every backend).
+    fn from_u32(x: u32) -> Self;
+    /// Converts to `f64` (exact for every backend).
+    fn to_f64(self) -> f64;
+
+    /// `|self|`.
+    fn abs(self) -> Self;
+    /// Square root; returns 0 for negative input (and for NaN).
+    fn sqrt(self) -> Self;
+    /// Four-quadrant arctangent of `self / x` in [-pi, pi]; `atan2(0, 0) = 0`.
+    fn atan2(self, x: Self) -> Self;
+    /// Sine (radians).
+    fn sin(self) -> Self;
+    /// Cosine (radians).
+    fn cos(self) -> Self;
+    /// `true` unless NaN or infinite.
+    fn is_finite(self) -> bool;
+
+    /// The larger of two values; a NaN operand loses.
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        if self >= other || other.is_nan_like() {
+            self
+        } else {
+            other
+        }
+    }
+    /// The smaller of two values; a NaN operand loses.
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        if self <= other || other.is_nan_like() {
+            self
+        } else {
+            other
+        }
+    }
+    /// `true` for NaN (never for the fixed-point types).
+    #[inline(always)]
+    #[allow(clippy::eq_op)]
+    fn is_nan_like(self) -> bool {
+        self != self
+    }
+    /// Clamps to [0, 1]; NaN maps to 0. Used on the result of every normalized model: it only
+    /// removes rounding excursions, since the exact value lies in [0, 1].
+    #[inline(always)]
+    fn clamp01(self) -> Self {
+        if self > Self::ZERO {
+            if self < Self::ONE {
+                self
+            } else {
+                Self::ONE
+            }
+        } else {
+            Self::ZERO
+        }
+    }
+    /// Clamps to [lo, hi]; NaN maps to `lo`.
+    #[inline(always)]
+    fn clamp(self, lo: Self, hi: Self) -> Self {
+        if self > lo {
+            if self < hi {
+                self
+            } else {
+                hi
+            }
+        } else {
+            lo
+        }
+    }
+    /// `self` if finite, else 0: the documented fallback of every per-sample function.
+    #[inline(always)]
+    fn finite_or_zero(self) -> Self {
+        if self.is_finite() {
+            self
+        } else {
+            Self::ZERO
+        }
+    }
+    /// Arc cosine in [0, pi] of `self` clamped to [-1, 1], computed as
+    /// `atan2(sqrt((1 - x)(1 + x)), x)` (accurate near +-1, where `acos` loses digits).
+    #[inline(always)]
+    fn acos_clamped(self) -> Self {
+        let x = self.clamp(-Self::ONE, Self::ONE);
+        ((Self::ONE - x) * (Self::ONE + x)).sqrt().atan2(x)
+    }
+    /// `self * self`.
+    #[inline(always)]
+    fn sq(self) -> Self {
+        self * self
+    }
+    /// `self^n` by repeated squaring (`n` = 0 gives 1).
+    #[inline]
+    fn powu(self, mut n: u32) -> Self {
+        let mut base = self;
+        let mut acc = Self::ONE;
+        while n > 0 {
+            if n & 1 == 1 {
+                acc *= base;
+            }
+            base *= base;
+            n >>= 1;
+        }
+        acc
+    }
+}
+
+#[cfg(not(feature = "libm"))]
+compile_error!(
+    "arealight needs a math backend for f32/f64: enable the `libm` feature \
+     (it is on by default; with `default-features = false` add `features = [\"libm\"]`)"
+);
+
+macro_rules! impl_real_float {
+    ($t:ty, $sqrt:path, $atan2:path, $sin:path, $cos:path, $tiny:expr) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::f64::consts::PI as $t;
+            const FRAC_PI_2: Self = core::f64::consts::FRAC_PI_2 as $t;
+            const TAU: Self = core::f64::consts::TAU as $t;
+            const FRAC_1_PI: Self = core::f64::consts::FRAC_1_PI as $t;
+            const FRAC_1_TAU: Self = (0.5 * core::f64::consts::FRAC_1_PI) as $t;
+            const EPSILON: Self = <$t>::EPSILON;
+            const TINY: Self = $tiny;
+
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn from_u32(x: u32) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                if self < 0.0 {
+                    -self
+                } else {
+                    self
+                }
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                if self > 0.0 {
+                    $sqrt(self)
+                } else {
+                    0.0
+                }
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                $atan2(self, x)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+        }
+    };
+}
+
+// TINY: about the square root of the smallest normal, so squares of lengths above it are normal.
+impl_real_float!(f64, libm::sqrt, libm::atan2, libm::sin, libm::cos, 1.0e-150);
+impl_real_float!(
+    f32,
+    libm::sqrtf,
+    libm::atan2f,
+    libm::sinf,
+    libm::cosf,
+    1.0e-18
+);
