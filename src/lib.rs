@@ -39,6 +39,9 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 #![warn(clippy::all)]
+// `!(x > y)` is deliberate throughout: unlike `x <= y` it is true when x is NaN, which is what
+// every validation and fallback here needs.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod cap;
 pub mod error;

@@ -45,7 +45,7 @@
 //! cap is wholly above the horizon `x = pi` and `I(0) = 2 pi (1 - cs)`.
 
 use crate::cap::{CapLight, SphereLight};
-use crate::hemisphere::HemisphereLight;
+use crate::hemisphere::{cos_sin_between, HemisphereLight};
 use crate::polygon::{for_each_clipped_edge, PolygonLight, SolidAngleFan};
 use crate::sine_power::{sine_power_integral, sine_power_integral_pi};
 use crate::{Error, Real, Vec3};
@@ -121,8 +121,7 @@ impl<T: Real> HemisphereLight<T> {
         let Some(r) = r.normalize() else {
             return T::ZERO;
         };
-        let c = r.dot(self.axis()).clamp(-T::ONE, T::ONE);
-        let s = r.cross(self.axis()).length().min(T::ONE);
+        let (c, s) = cos_sin_between(r, self.axis());
         let m = lobe.m;
         // x only matters for even m (S starts from S(0, x) = x).
         let w = if m & 1 == 0 { s.atan2(c) } else { T::ZERO };
@@ -145,8 +144,7 @@ impl<T: Real> HemisphereLight<T> {
         let Some(r) = r.normalize() else {
             return T::ZERO;
         };
-        let c = r.dot(self.axis()).clamp(-T::ONE, T::ONE);
-        let s = r.cross(self.axis()).length().min(T::ONE);
+        let (c, s) = cos_sin_between(r, self.axis());
         let m = lobe.m;
         let k = m + 1;
         let w = if k & 1 == 0 { s.atan2(c) } else { T::ZERO };
@@ -235,8 +233,7 @@ impl<T: Real> CapLight<T> {
             return T::ZERO;
         };
         let (cs, ss) = self.cos_sin_sigma();
-        let c = r.dot(self.axis()).clamp(-T::ONE, T::ONE);
-        let s = r.cross(self.axis()).length().min(T::ONE);
+        let (c, s) = cos_sin_between(r, self.axis());
         phong_cap_from_angle(lobe.m, c, s, cs, ss)
     }
 }
@@ -250,8 +247,7 @@ impl<T: Real> SphereLight<T> {
     pub fn try_phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
         let r = r.try_normalize("r")?;
-        let c = r.dot(cap.axis).clamp(-T::ONE, T::ONE);
-        let s = r.cross(cap.axis).length().min(T::ONE);
+        let (c, s) = cos_sin_between(r, cap.axis);
         Ok(phong_cap_from_angle(lobe.m, c, s, cap.cs, cap.ss))
     }
 
@@ -266,11 +262,10 @@ impl<T: Real> SphereLight<T> {
 }
 
 /// `T_sum(a, b, n, x)` of Snyder appendix G: the sum of `T(a, b, k, x) = integral from 0 to x
-/// of (a cos t + b sin t)^k dt` over `k = n, n - 2, ...` down to 0 or 1.
+/// of (a cos t + b sin t)^k dt` over `k = n, n - 2, ...` down to 0 or 1; `f = a^2 + b^2`.
 #[inline]
-fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b: T) -> T {
-    let f = a * a + b * b;
-    let g = a * cos_x + b * sin_x;
+fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b: T, f: T) -> T {
+    let g = (a * cos_x + b * sin_x).clamp(-T::ONE, T::ONE);
     let g2 = g * g;
     let a2 = a * a;
     let h = a * sin_x - b * cos_x;
@@ -332,7 +327,15 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 return;
             }
             let perp = gu.cross(a);
-            sum += rg * cos_sin_power_integral_sum(m - 1, x, cos_x, sin_x, r.dot(a), r.dot(perp));
+            let (ra, rp) = (r.dot(a), r.dot(perp));
+            // f = a^2 + b^2 = 1 - (r.gu)^2: the second form is exact to an ULP near 1, where
+            // the recurrence raises f to the power m/2 (see cos_sin_between).
+            let f = if rg.abs() < T::HALF {
+                (T::ONE - rg) * (T::ONE + rg)
+            } else {
+                (ra * ra + rp * rp).min(T::ONE)
+            };
+            sum += rg * cos_sin_power_integral_sum(m - 1, x, cos_x, sin_x, ra, rp, f);
         });
         if even {
             sum += fan.total();

@@ -277,8 +277,8 @@ impl<T: Real> Sh9Irradiance<T> {
         let m = [T::ONE, x, y, z, x * y, y * z, x * z, z * z, x * x - y * y];
         let ch = |f: fn(&Rgb<T>) -> T| {
             let mut s = T::ZERO;
-            for i in 0..9 {
-                s += f(&self.k[i]) * m[i];
+            for (k, x) in self.k.iter().zip(m) {
+                s += f(k) * x;
             }
             s
         };

@@ -133,9 +133,8 @@ pub fn fast_atan2(y: f32, x: f32) -> f32 {
     };
     let s = t * t;
     // Abramowitz & Stegun 4.4.49 on [0, 1]: |error| <= 1e-5.
-    let p = t
-        * (0.999_866_0
-            + s * (-0.330_299_5 + s * (0.180_141_0 + s * (-0.085_133_0 + s * 0.020_835_1))));
+    let p =
+        t * (0.999_866 + s * (-0.330_299_5 + s * (0.180_141 + s * (-0.085_133 + s * 0.020_835_1))));
     let mut a = if swap {
         core::f32::consts::FRAC_PI_2 - p
     } else {
