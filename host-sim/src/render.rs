@@ -1,0 +1,404 @@
+//! `host-sim render`: a contact sheet of shaded spheres, one per model, in f32.
+//!
+//! Each tile is a unit sphere at the origin seen orthographically along -z (view direction
+//! `v = +z`, x right, y up). A pixel's surface point is `p = n`; Phong models use the reflection
+//! `r = 2 (n.v) n - v`. Every light sits up-left-front of the sphere, along
+//! `L = (-1, 1, 1)/sqrt 3`. Each tile shows the model's value alone (no ambient, no albedo),
+//! scaled so that its brightest pixel is white (the scale is printed under the label as the
+//! tile's peak value), clamped and sRGB-encoded.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use arealight::{
+    CapLight, Environment, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Rgb, Sh9,
+    SkyGround, SphereLight, Vec3,
+};
+use clap::Args;
+use embedded_graphics::{
+    mono_font::{ascii::FONT_6X10, MonoTextStyle},
+    pixelcolor::{Rgb888, RgbColor},
+    prelude::{DrawTarget, OriginDimensions, Point, Size},
+    text::{Baseline, Text},
+    Drawable, Pixel,
+};
+use tiny_skia::{Color, Paint, PathBuilder, Pixmap, PremultipliedColorU8, Rect, Stroke, Transform};
+
+/// The output directory when none is given.
+pub const DEFAULT_OUT: &str = "out";
+
+/// Arguments of `host-sim render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// Directory to write contact_sheet.png into (created if missing).
+    #[arg(long, value_name = "DIR", default_value = DEFAULT_OUT)]
+    pub out: PathBuf,
+}
+
+const COLS: u32 = 6;
+const TILE_W: u32 = 160;
+const TILE_H: u32 = 186;
+const HEADER_H: u32 = 28;
+const RADIUS: f32 = 64.0;
+
+type V = Vec3<f32>;
+type Shader = Box<dyn Fn(V) -> [f32; 3]>;
+
+struct Tile {
+    /// The model id.
+    label: &'static str,
+    /// The light's parameters, printed under the label.
+    note: &'static str,
+    shade: Shader,
+}
+
+fn v(x: f32, y: f32, z: f32) -> V {
+    Vec3::new(x, y, z)
+}
+
+/// Reflection of the view direction +z about `n`.
+fn reflect(n: V) -> V {
+    let view = v(0.0, 0.0, 1.0);
+    n * (2.0 * n.z) - view
+}
+
+fn grey(x: f32) -> [f32; 3] {
+    [x, x, x]
+}
+
+fn rgb(c: Rgb<f32>) -> [f32; 3] {
+    [c.r, c.g, c.b]
+}
+
+/// The tiles, with their lights built once. Library errors here are programming errors of the
+/// scene (the parameters are constants), reported as such.
+fn tiles() -> Result<Vec<Tile>, arealight::Error> {
+    let l = v(-1.0, 1.0, 1.0).try_normalize("L")?;
+    let m = 16;
+    let lobe = PhongLobe::<f32>::new(m)?;
+    let lobe2 = PhongLobe::<f32>::new(2)?;
+
+    let hemi = HemisphereLight::new(l)?;
+    let sky = OvercastSky::new(l, 1.0)?;
+    let sky_ground = SkyGround::new(l, Rgb::new(0.55, 0.75, 1.0), Rgb::new(0.35, 0.22, 0.10))?;
+    let cap = CapLight::new(l, 0.45)?;
+    let phong_cap = CapLight::new(l, 0.25)?;
+    let sphere = SphereLight::new(l * 3.0, 1.0)?;
+    // A 2.4 x 1.2 rectangle facing the origin, centred 3 units along L, long side horizontal.
+    let u = v(0.0, 1.0, 0.0).cross(l).try_normalize("u")?;
+    let w = l.cross(u);
+    let c = l * 3.0;
+    let (hu, hw) = (u * 1.2, w * 0.6);
+    let poly = PolygonLight::<f32, 4>::new(&[c - hu - hw, c + hu - hw, c + hu + hw, c - hu + hw])?;
+    let grace = Sh9::<f32>::environment(Environment::GraceCathedral).prepare();
+    let disc = Sh9::disc(l, 0.45, Rgb::splat(1.0))?.prepare();
+
+    let mut t: Vec<Tile> = Vec::new();
+    let mut add = |label: &'static str, note: &'static str, shade: Shader| {
+        t.push(Tile { label, note, shade })
+    };
+    add(
+        "hemi_const",
+        "",
+        Box::new(move |n| grey(hemi.lambert_const(n))),
+    );
+    add("hemi_cos", "", Box::new(move |n| grey(hemi.lambert_cos(n))));
+    add(
+        "sky_overcast",
+        "c=1",
+        Box::new(move |n| grey(sky.lambert(n))),
+    );
+    add(
+        "sky_ground",
+        "",
+        Box::new(move |n| rgb(sky_ground.irradiance(n))),
+    );
+    add(
+        "cap_lambert",
+        "s=0.45",
+        Box::new(move |n| grey(cap.lambert(n))),
+    );
+    add(
+        "cap_lambert_hermite",
+        "s=0.45",
+        Box::new(move |n| grey(cap.lambert_hermite(n))),
+    );
+    add(
+        "sphere_lambert",
+        "d=3 r=1",
+        Box::new(move |n| grey(sphere.lambert(n, n))),
+    );
+    add(
+        "sphere_lambert_hermite",
+        "d=3 r=1",
+        Box::new(move |n| grey(sphere.lambert_hermite(n, n))),
+    );
+    let p = poly.clone();
+    add(
+        "polygon_lambert",
+        "2.4x1.2",
+        Box::new(move |n| grey(p.lambert(n, n))),
+    );
+    add(
+        "phong_hemi_const",
+        "m=16",
+        Box::new(move |n| grey(hemi.phong_const(&lobe, reflect(n)))),
+    );
+    add(
+        "phong_hemi_cos",
+        "m=16",
+        Box::new(move |n| grey(hemi.phong_cos(&lobe, reflect(n)))),
+    );
+    add(
+        "phong_cap",
+        "m=16 s=0.25",
+        Box::new(move |n| grey(phong_cap.phong(&lobe, reflect(n)))),
+    );
+    add(
+        "phong_sphere",
+        "m=16",
+        Box::new(move |n| grey(sphere.phong(&lobe, n, reflect(n)))),
+    );
+    let p = poly.clone();
+    add(
+        "phong_polygon",
+        "m=16",
+        Box::new(move |n| grey(p.phong(&lobe, n, reflect(n)))),
+    );
+    add(
+        "phong_polygon",
+        "m=2",
+        Box::new(move |n| grey(poly.phong(&lobe2, n, reflect(n)))),
+    );
+    add(
+        "sh9_irradiance",
+        "grace",
+        Box::new(move |n| rgb(grace.irradiance(n))),
+    );
+    add(
+        "sh9_disc_irradiance",
+        "a=0.45",
+        Box::new(move |n| rgb(disc.irradiance(n))),
+    );
+    Ok(t)
+}
+
+/// embedded-graphics drawing onto a tiny-skia pixmap (opaque pixels).
+struct Canvas<'a>(&'a mut Pixmap);
+
+impl OriginDimensions for Canvas<'_> {
+    fn size(&self) -> Size {
+        Size::new(self.0.width(), self.0.height())
+    }
+}
+
+impl DrawTarget for Canvas<'_> {
+    type Color = Rgb888;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<Self::Color>>,
+    {
+        let (w, h) = (self.0.width() as i32, self.0.height() as i32);
+        let data = self.0.pixels_mut();
+        for Pixel(pt, c) in pixels {
+            if (0..w).contains(&pt.x) && (0..h).contains(&pt.y) {
+                if let Some(px) = PremultipliedColorU8::from_rgba(c.r(), c.g(), c.b(), 255) {
+                    data[(pt.y * w + pt.x) as usize] = px;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn text(canvas: &mut Canvas, s: &str, x: i32, y: i32, colour: Rgb888) {
+    let style = MonoTextStyle::new(&FONT_6X10, colour);
+    // Infallible.
+    let _ = Text::with_baseline(s, Point::new(x, y), style, Baseline::Top).draw(canvas);
+}
+
+fn srgb8(x: f32) -> u8 {
+    let x = x.clamp(0.0, 1.0);
+    let e = if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    };
+    (e * 255.0 + 0.5) as u8
+}
+
+const BG: [u8; 3] = [24, 24, 28];
+
+/// Shades one tile into `pix` with its top-left corner at (x0, y0); returns the peak value.
+fn draw_sphere(pix: &mut Pixmap, tile: &Tile, cx: f32, cy: f32) -> f32 {
+    let size = (2.0 * RADIUS) as usize + 2;
+    let (x0, y0) = ((cx - RADIUS) as i32 - 1, (cy - RADIUS) as i32 - 1);
+    // Pass 1: values and coverage.
+    let mut vals = vec![([0.0f32; 3], 0.0f32); size * size];
+    let mut peak = 0.0f32;
+    for j in 0..size {
+        for i in 0..size {
+            let px = (x0 + i as i32) as f32 + 0.5;
+            let py = (y0 + j as i32) as f32 + 0.5;
+            let (sx, sy) = ((px - cx) / RADIUS, (cy - py) / RADIUS);
+            let d = (sx * sx + sy * sy).sqrt();
+            // Analytic edge coverage over about one pixel.
+            let cover = ((1.0 - d) * RADIUS + 0.5).clamp(0.0, 1.0);
+            if cover <= 0.0 {
+                continue;
+            }
+            // Shade at the nearest point inside the disc.
+            let (sx, sy) = if d > 0.999 {
+                (sx * 0.999 / d, sy * 0.999 / d)
+            } else {
+                (sx, sy)
+            };
+            let nz = (1.0 - sx * sx - sy * sy).max(0.0).sqrt();
+            let c = (tile.shade)(v(sx, sy, nz));
+            for ch in c {
+                if ch.is_finite() {
+                    peak = peak.max(ch);
+                }
+            }
+            vals[j * size + i] = (c, cover);
+        }
+    }
+    // Pass 2: expose, tone-map, composite over the background.
+    let scale = if peak > 0.0 { 1.0 / peak } else { 1.0 };
+    let (w, h) = (pix.width() as i32, pix.height() as i32);
+    let data = pix.pixels_mut();
+    for j in 0..size {
+        for i in 0..size {
+            let (c, cover) = vals[j * size + i];
+            let (x, y) = (x0 + i as i32, y0 + j as i32);
+            if cover <= 0.0 || !(0..w).contains(&x) || !(0..h).contains(&y) {
+                continue;
+            }
+            let ch = |k: usize| {
+                let fg = srgb8(if c[k].is_finite() { c[k] * scale } else { 0.0 }) as f32;
+                (fg * cover + BG[k] as f32 * (1.0 - cover) + 0.5) as u8
+            };
+            if let Some(p) = PremultipliedColorU8::from_rgba(ch(0), ch(1), ch(2), 255) {
+                data[(y * w + x) as usize] = p;
+            }
+        }
+    }
+    peak
+}
+
+/// Renders the contact sheet and returns the PNG's path.
+///
+/// # Errors
+/// A message for a scene the library refuses or a file that cannot be written.
+pub fn render(args: &RenderArgs) -> Result<PathBuf, String> {
+    let tiles = tiles().map_err(|e| format!("scene refused by the library: {e}"))?;
+    let rows = (tiles.len() as u32).div_ceil(COLS);
+    let (w, h) = (COLS * TILE_W, HEADER_H + rows * TILE_H);
+    let mut pix = Pixmap::new(w, h).ok_or("cannot allocate the pixmap")?;
+    pix.fill(Color::from_rgba8(BG[0], BG[1], BG[2], 255));
+
+    let mut frame = Paint::default();
+    frame.set_color_rgba8(70, 70, 80, 255);
+    let mut marker = Paint::default();
+    marker.set_color_rgba8(255, 210, 80, 255);
+    marker.anti_alias = true;
+    let stroke = Stroke::default();
+    let l = [-1.0f32 / 3f32.sqrt(), 1.0 / 3f32.sqrt()];
+
+    let mut peaks = Vec::with_capacity(tiles.len());
+    for (k, tile) in tiles.iter().enumerate() {
+        let (col, row) = (k as u32 % COLS, k as u32 / COLS);
+        let (tx, ty) = ((col * TILE_W) as f32, (HEADER_H + row * TILE_H) as f32);
+        if let Some(rect) =
+            Rect::from_xywh(tx + 2.5, ty + 2.5, TILE_W as f32 - 5.0, TILE_H as f32 - 5.0)
+        {
+            let path = PathBuilder::from_rect(rect);
+            pix.stroke_path(&path, &frame, &stroke, Transform::identity(), None);
+        }
+        let (cx, cy) = (tx + TILE_W as f32 / 2.0, ty + 10.0 + RADIUS);
+        peaks.push(draw_sphere(&mut pix, tile, cx, cy));
+        // The light's direction, projected: a small dot up-left of the sphere.
+        if let Some(dot) =
+            PathBuilder::from_circle(cx + l[0] * RADIUS * 1.18, cy - l[1] * RADIUS * 1.18, 3.5)
+        {
+            pix.fill_path(
+                &dot,
+                &marker,
+                tiny_skia::FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+
+    let mut canvas = Canvas(&mut pix);
+    text(
+        &mut canvas,
+        "arealight contact sheet - f32, unit sphere, view +z, light along (-1,1,1) (dot)",
+        8,
+        4,
+        Rgb888::new(230, 230, 230),
+    );
+    text(
+        &mut canvas,
+        "each tile scaled so its peak is white; under the label: parameters (s sigma, a alpha) and peak",
+        8,
+        15,
+        Rgb888::new(150, 150, 160),
+    );
+    for (k, (tile, peak)) in tiles.iter().zip(&peaks).enumerate() {
+        let (col, row) = (k as u32 % COLS, k as u32 / COLS);
+        let (tx, ty) = ((col * TILE_W) as i32, (HEADER_H + row * TILE_H) as i32);
+        let y = ty + 10 + 2 * RADIUS as i32 + 8;
+        text(
+            &mut canvas,
+            tile.label,
+            tx + 8,
+            y,
+            Rgb888::new(235, 235, 235),
+        );
+        text(
+            &mut canvas,
+            &format!("{:<13}peak {peak:.4}", tile.note),
+            tx + 8,
+            y + 12,
+            Rgb888::new(150, 150, 160),
+        );
+    }
+
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let path = args.out.join("contact_sheet.png");
+    pix.save_png(&path)
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    Ok(path)
+}
+
+/// `host-sim render`.
+pub fn main(args: &RenderArgs) -> std::process::ExitCode {
+    let start = Instant::now();
+    match render(args) {
+        Ok(path) => {
+            println!("{}", path.display());
+            eprintln!("rendered in {:.3} s", start.elapsed().as_secs_f64());
+            std::process::ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("host-sim render: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn srgb_ends() {
+        assert_eq!(super::srgb8(0.0), 0);
+        assert_eq!(super::srgb8(1.0), 255);
+        assert_eq!(super::srgb8(2.0), 255);
+        assert_eq!(super::srgb8(f32::NAN), 0);
+    }
+}

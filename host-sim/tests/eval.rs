@@ -1,0 +1,505 @@
+//! `host-sim eval` end to end: the binary, fed on stdin, read back from stdout.
+
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+use serde_json::{json, Value};
+
+/// Runs `host-sim eval --backend <backend>` on `input`; returns stdout's lines and the exit code.
+fn run_raw(backend: &str, input: &str) -> (Vec<String>, i32) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["eval", "--backend", backend])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn host-sim");
+    let mut stdin = child.stdin.take().unwrap();
+    let input = input.to_owned();
+    let writer = std::thread::spawn(move || {
+        stdin.write_all(input.as_bytes()).unwrap();
+    });
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        out.stderr.is_empty(),
+        "stderr: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (
+        stdout.lines().map(str::to_owned).collect(),
+        out.status.code().unwrap_or(-1),
+    )
+}
+
+/// Runs the lines (as JSON values) and parses the answers; asserts exit code 0.
+fn run(backend: &str, lines: &[Value]) -> Vec<Value> {
+    let input: String = lines.iter().map(|l| format!("{l}\n")).collect();
+    let (out, code) = run_raw(backend, &input);
+    assert_eq!(code, 0);
+    assert_eq!(out.len(), lines.len(), "one output line per input line");
+    out.iter()
+        .map(|l| serde_json::from_str(l).expect("output is JSON"))
+        .collect()
+}
+
+fn one(backend: &str, line: Value) -> Value {
+    run(backend, &[line]).pop().unwrap()
+}
+
+fn error_of(v: &Value) -> &str {
+    v["error"]
+        .as_str()
+        .unwrap_or_else(|| panic!("expected an error, got {v}"))
+}
+
+const GRACE: [[f64; 3]; 9] = [
+    [0.79, 0.44, 0.54],
+    [0.39, 0.35, 0.60],
+    [-0.34, -0.18, -0.27],
+    [-0.29, -0.06, 0.01],
+    [-0.11, -0.05, -0.12],
+    [-0.26, -0.22, -0.47],
+    [-0.16, -0.09, -0.15],
+    [0.56, 0.21, 0.14],
+    [0.21, -0.05, -0.30],
+];
+
+fn square() -> Value {
+    json!([[-1, -1, 2], [1, -1, 2], [1, 1, 2], [-1, 1, 2]])
+}
+
+/// A simple valid case for every supported model.
+fn valid_cases() -> Vec<Value> {
+    vec![
+        json!({"id": "hemi_const", "model": "hemi_const", "n": [0, 0.6, 0.8], "axis": [0, 0, 1]}),
+        json!({"id": "hemi_cos", "model": "hemi_cos", "n": [0.3, 0.6, 0.5], "axis": [0, 0, 1]}),
+        json!({"id": "sky_overcast", "model": "sky_overcast", "n": [0, 0.6, 0.8], "zenith": [0, 0, 2], "c": 1.5}),
+        json!({"id": "sky_ground", "model": "sky_ground", "n": [0, 1, 1], "up": [0, 1, 0],
+               "sky": [0.6, 0.7, 1.0], "ground": [0.3, 0.2, 0.1]}),
+        json!({"id": "cap_lambert", "model": "cap_lambert", "n": [1, 0, 0.2], "axis": [0, 0, 1], "sigma": 0.5}),
+        json!({"id": "cap_lambert_hermite", "model": "cap_lambert_hermite", "n": [1, 0, 0.2],
+               "axis": [0, 0, 1], "sigma": 0.5}),
+        json!({"id": "sphere_lambert", "model": "sphere_lambert", "p": [0, 0, 0], "n": [0, 0.3, 1],
+               "center": [0, 0, 3], "radius": 1}),
+        json!({"id": "sphere_lambert_hermite", "model": "sphere_lambert_hermite", "p": [0, 0, 0],
+               "n": [0, 0.3, 1], "center": [0, 0, 3], "radius": 1}),
+        json!({"id": "polygon_lambert", "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0.5, 1],
+               "verts": square()}),
+        json!({"id": "phong_hemi_const", "model": "phong_hemi_const", "r": [0, 0.5, 1], "axis": [0, 0, 1], "m": 8}),
+        json!({"id": "phong_hemi_cos", "model": "phong_hemi_cos", "r": [0, 0.5, 1], "axis": [0, 0, 1], "m": 7}),
+        json!({"id": "phong_cap", "model": "phong_cap", "r": [0, 0.3, 1], "axis": [0, 0, 1], "sigma": 0.4, "m": 9}),
+        json!({"id": "phong_sphere", "model": "phong_sphere", "p": [0, 0, 0], "r": [0, 0.2, 1],
+               "center": [0, 0, 3], "radius": 1, "m": 16}),
+        json!({"id": "phong_polygon", "model": "phong_polygon", "p": [0, 0, 0], "r": [0, 0.3, 1],
+               "verts": square(), "m": 16}),
+        json!({"id": "sh9_irradiance", "model": "sh9_irradiance", "n": [0.2, 0.3, 1], "coeffs": GRACE}),
+        json!({"id": "sh9_disc_irradiance", "model": "sh9_disc_irradiance", "n": [0, 0.2, 1],
+               "axis": [0, 0, 1], "alpha": 0.6}),
+    ]
+}
+
+/// The answer's numbers (one for "value", three for "rgb").
+fn numbers(v: &Value) -> Vec<f64> {
+    if let Some(x) = v.get("value") {
+        vec![x.as_f64().unwrap()]
+    } else if let Some(c) = v.get("rgb") {
+        c.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    } else {
+        panic!("no value in {v}")
+    }
+}
+
+#[test]
+fn every_supported_model_answers_on_every_float_backend() {
+    let cases = valid_cases();
+    let reference = run("f64", &cases);
+    let f32s = run("f32", &cases);
+    let fast = run("f32-fast", &cases);
+    for (((case, r), a), b) in cases.iter().zip(&reference).zip(&f32s).zip(&fast) {
+        let id = &case["id"];
+        for out in [r, a, b] {
+            assert_eq!(&out["id"], id, "{out}");
+            assert!(out.get("error").is_none(), "{out}");
+        }
+        let want_rgb = matches!(id.as_str(), Some("sky_ground" | "sh9_irradiance"));
+        assert_eq!(r.get("rgb").is_some(), want_rgb, "{r}");
+        let (r, a, b) = (numbers(r), numbers(a), numbers(b));
+        for k in 0..r.len() {
+            assert!(r[k].is_finite() && a[k].is_finite() && b[k].is_finite());
+            assert!(r[k] > 0.0, "{id}: a lit case should be positive: {}", r[k]);
+            assert!(
+                (r[k] - a[k]).abs() <= 1e-5,
+                "{id}: f32 {} vs f64 {}",
+                a[k],
+                r[k]
+            );
+            assert!(
+                (r[k] - b[k]).abs() <= r[k].abs().max(1.0) / 1024.0,
+                "{id}: f32-fast {} vs f64 {}",
+                b[k],
+                r[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn numbers_round_trip() {
+    use arealight::{HemisphereLight, PhongLobe, PolygonLight, Vec3};
+    let out = run(
+        "f64",
+        &[
+            json!({"id": "one", "model": "hemi_const", "n": [0, 0, 1], "axis": [0, 0, 1]}),
+            json!({"id": "cos", "model": "hemi_cos", "n": [0.3, 0.6, 0.5], "axis": [0, 0, 1]}),
+            json!({"id": "poly", "model": "phong_polygon", "p": [0, 0, 0], "r": [0, 0.3, 1],
+                   "verts": square(), "m": 16}),
+        ],
+    );
+    assert_eq!(out[0]["value"].as_f64(), Some(1.0));
+    // Bit-exact against the library called directly.
+    let hemi = HemisphereLight::<f64>::new(Vec3::new(0.0, 0.0, 1.0)).unwrap();
+    let want = hemi.lambert_cos(Vec3::new(0.3, 0.6, 0.5));
+    assert_eq!(out[1]["value"].as_f64().unwrap().to_bits(), want.to_bits());
+    let verts = [
+        Vec3::new(-1.0, -1.0, 2.0),
+        Vec3::new(1.0, -1.0, 2.0),
+        Vec3::new(1.0, 1.0, 2.0),
+        Vec3::new(-1.0, 1.0, 2.0),
+    ];
+    let poly = PolygonLight::<f64, 4>::new(&verts).unwrap();
+    let want = poly.phong(
+        &PhongLobe::new(16).unwrap(),
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.0, 0.3, 1.0),
+    );
+    assert_eq!(out[2]["value"].as_f64().unwrap().to_bits(), want.to_bits());
+    // The f32 backend prints the f32 result exactly (as f64).
+    let out = one(
+        "f32",
+        json!({"id": "c", "model": "hemi_cos", "n": [0.3, 0.6, 0.5], "axis": [0, 0, 1]}),
+    );
+    let hemi = HemisphereLight::<f32>::new(Vec3::new(0.0, 0.0, 1.0)).unwrap();
+    let want = hemi.lambert_cos(Vec3::new(0.3, 0.6, 0.5)) as f64;
+    assert_eq!(out["value"].as_f64().unwrap().to_bits(), want.to_bits());
+}
+
+#[test]
+fn exact_output_text() {
+    let (out, code) = run_raw(
+        "f64",
+        "{\"id\":\"a\",\"model\":\"hemi_const\",\"n\":[0,0,1],\"axis\":[0,0,1]}\n",
+    );
+    assert_eq!(code, 0);
+    assert_eq!(out, vec![r#"{"id":"a","value":1.0}"#.to_owned()]);
+}
+
+#[test]
+fn non_finite_strings_are_refused() {
+    let base = valid_cases();
+    let mut lines = Vec::new();
+    // One non-finite number in each kind of parameter.
+    let mut l = base[0].clone();
+    l["n"] = json!(["NaN", 0, 1]);
+    lines.push((l, "n is not finite"));
+    let mut l = base[4].clone();
+    l["sigma"] = json!("Infinity");
+    lines.push((l, "sigma is not finite"));
+    let mut l = base[6].clone();
+    l["radius"] = json!("-Infinity");
+    lines.push((l, "radius is not finite"));
+    let mut l = base[8].clone();
+    l["verts"][2][1] = json!("NaN");
+    lines.push((l, "verts is not finite"));
+    let mut l = base[13].clone();
+    l["p"] = json!([0, "Infinity", 0]);
+    lines.push((l, "p is not finite"));
+    let mut l = base[12].clone();
+    l["m"] = json!("Infinity");
+    lines.push((l, "m is not finite"));
+    let mut l = base[14].clone();
+    l["coeffs"][3][0] = json!("-Infinity");
+    lines.push((l, "coeffs is not finite"));
+    let mut l = base[3].clone();
+    l["ground"] = json!([0, "NaN", 0]);
+    lines.push((l, "ground is not finite"));
+    let mut l = base[2].clone();
+    l["c"] = json!("NaN");
+    lines.push((l, "c is not finite"));
+    let mut l = base[15].clone();
+    l["alpha"] = json!("NaN");
+    lines.push((l, "alpha is not finite"));
+    let mut l = base[9].clone();
+    l["r"] = json!([0, 0, "Infinity"]);
+    lines.push((l, "r is not finite"));
+    let input: Vec<Value> = lines.iter().map(|(l, _)| l.clone()).collect();
+    for backend in ["f64", "f32", "f32-fast"] {
+        let out = run(backend, &input);
+        for ((line, want), got) in lines.iter().zip(&out) {
+            assert_eq!(got["id"], line["id"]);
+            assert!(
+                error_of(got).contains(want),
+                "{backend}: {got} should say {want:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn invalid_inputs_get_precise_errors() {
+    let cases = [
+        (
+            json!({"id": 1, "model": "hemi_cos", "n": [0, 0, 0], "axis": [0, 0, 1]}),
+            "n has zero length",
+        ),
+        (
+            json!({"id": 2, "model": "hemi_cos", "n": [0, 0, 1], "axis": [0, 0, 0]}),
+            "axis has zero length",
+        ),
+        (
+            json!({"id": 3, "model": "phong_cap", "r": [0, 0, 0], "axis": [0, 0, 1], "sigma": 0.3, "m": 3}),
+            "r has zero length",
+        ),
+        (
+            json!({"id": 4, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigma": 2.0}),
+            "sigma is outside [0, pi/2]",
+        ),
+        // Just above pi/2 in f64 (it rounds to pi/2 in f32): refused by every backend.
+        (
+            json!({"id": 5, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigma": 1.5707963267948968}),
+            "sigma is outside [0, pi/2]",
+        ),
+        (
+            json!({"id": 6, "model": "sh9_disc_irradiance", "n": [0, 0, 1], "axis": [0, 0, 1], "alpha": 3.2}),
+            "alpha is outside [0, pi]",
+        ),
+        (
+            json!({"id": 7, "model": "phong_hemi_const", "r": [0, 0, 1], "axis": [0, 0, 1], "m": 2.5}),
+            "m must be a non-negative integer",
+        ),
+        (
+            json!({"id": 8, "model": "phong_hemi_const", "r": [0, 0, 1], "axis": [0, 0, 1], "m": -1}),
+            "m must be a non-negative integer",
+        ),
+        (
+            json!({"id": 9, "model": "sphere_lambert", "p": [0, 0, 2.5], "n": [0, 0, 1],
+                   "center": [0, 0, 3], "radius": 1}),
+            "inside or on the sphere",
+        ),
+        (
+            json!({"id": 10, "model": "sphere_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "center": [0, 0, 3], "radius": 0}),
+            "radius is not > 0",
+        ),
+        (
+            json!({"id": 11, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "verts": [[0, 0, 1], [1, 0, 1]]}),
+            "fewer than 3 vertices",
+        ),
+        (
+            json!({"id": 12, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "verts": [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 2]]}),
+            "not planar",
+        ),
+        (
+            json!({"id": 13, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "verts": [[0, 0, 1], [2, 1, 1], [2, 0, 1], [0, 2, 1]]}),
+            "not simple",
+        ),
+        (
+            json!({"id": 14, "model": "phong_sphere", "p": [0, 0, 0], "r": [0, 0, 1],
+                   "center": [0, 0, 3], "radius": 1, "m": 2_000_000}),
+            "too large",
+        ),
+        (
+            json!({"id": 15, "model": "hemi_cos", "n": [0, 1], "axis": [0, 0, 1]}),
+            "n: expected an array of 3 numbers",
+        ),
+        (
+            json!({"id": 16, "model": "hemi_cos", "n": [0, "x", 1], "axis": [0, 0, 1]}),
+            "n: expected a number",
+        ),
+    ];
+    // A regular 65-gon: more vertices than the protocol's capacity.
+    let ring: Vec<Value> = (0..65)
+        .map(|i| {
+            let t = i as f64 * std::f64::consts::TAU / 65.0;
+            json!([t.cos(), t.sin(), 2.0])
+        })
+        .collect();
+    let mut cases = cases.to_vec();
+    cases.push((
+        json!({"id": 17, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1], "verts": ring}),
+        "more than 64 vertices",
+    ));
+    let input: Vec<Value> = cases.iter().map(|(l, _)| l.clone()).collect();
+    for backend in ["f64", "f32", "f32-fast"] {
+        let out = run(backend, &input);
+        for ((line, want), got) in cases.iter().zip(&out) {
+            assert_eq!(got["id"], line["id"]);
+            assert!(
+                error_of(got).contains(want),
+                "{backend}: {got} should say {want:?}"
+            );
+        }
+    }
+    // m = 3.0 is an integer, and 0 is allowed.
+    for m in [json!(3.0), json!(0)] {
+        let out = one(
+            "f64",
+            json!({"id": "m", "model": "phong_hemi_const", "r": [0, 0.2, 1], "axis": [0, 0, 1], "m": m}),
+        );
+        assert!(out["value"].as_f64().unwrap() > 0.0, "{out}");
+    }
+}
+
+#[test]
+fn bad_json_gets_null_id_and_the_run_goes_on() {
+    let input = "not json\n{\"id\": \"x\", \"model\": \n[1, 2]\n{\"model\": \"hemi_const\", \"n\": [0,0,1], \"axis\": [0,0,1]}\n{\"id\":\"ok\",\"model\":\"hemi_const\",\"n\":[0,0,1],\"axis\":[0,0,1]}\n";
+    let (out, code) = run_raw("f64", input);
+    assert_eq!(code, 0);
+    assert_eq!(out.len(), 5);
+    for l in &out[..4] {
+        let v: Value = serde_json::from_str(l).unwrap();
+        assert_eq!(v["id"], Value::Null, "{l}");
+        assert!(v["error"].is_string(), "{l}");
+    }
+    let v: Value = serde_json::from_str(&out[4]).unwrap();
+    assert_eq!(v, json!({"id": "ok", "value": 1.0}));
+}
+
+#[test]
+fn missing_parameter_echoes_the_id() {
+    let out = run(
+        "f64",
+        &[
+            json!({"id": "no-sigma", "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1]}),
+            json!({"id": "no-model", "n": [0, 0, 1]}),
+            json!({"id": 42, "model": "phong_polygon", "p": [0, 0, 0], "r": [0, 0, 1], "verts": square()}),
+        ],
+    );
+    assert_eq!(out[0]["id"], "no-sigma");
+    assert_eq!(error_of(&out[0]), "missing parameter: sigma");
+    assert_eq!(out[1]["id"], "no-model");
+    assert_eq!(error_of(&out[1]), "missing parameter: model");
+    assert_eq!(out[2]["id"], 42);
+    assert_eq!(error_of(&out[2]), "missing parameter: m");
+}
+
+const NOT_YET: [&str; 11] = [
+    "line_lambert",
+    "line_phong_peak",
+    "rect_phong_peak",
+    "axial_moment",
+    "double_axis_moment",
+    "directional_luminaire",
+    "glossy_reflection",
+    "glossy_transmission",
+    "lune_normalization",
+    "superellipse_shape",
+    "distance_falloff",
+];
+
+#[test]
+fn unsupported_and_unknown_models() {
+    let mut lines: Vec<Value> = NOT_YET
+        .iter()
+        .map(|m| json!({"id": m, "model": m}))
+        .collect();
+    lines.push(json!({"id": "u", "model": "no_such_model", "n": [0, 0, 1]}));
+    for backend in ["f64", "f32", "f32-fast"] {
+        let out = run(backend, &lines);
+        for (m, got) in NOT_YET.iter().zip(&out) {
+            assert_eq!(got["id"], *m);
+            assert_eq!(
+                error_of(got),
+                format!("unsupported: {m} is not implemented yet")
+            );
+        }
+        let last = out.last().unwrap();
+        assert_eq!(last["id"], "u");
+        assert!(error_of(last).contains("no_such_model"), "{last}");
+        assert!(!error_of(last).starts_with("unsupported"), "{last}");
+    }
+}
+
+#[test]
+fn fixed_backend_is_unsupported() {
+    let cases = valid_cases();
+    let out = run("fixed", &cases);
+    for (case, got) in cases.iter().zip(&out) {
+        assert_eq!(got["id"], case["id"]);
+        assert_eq!(
+            error_of(got),
+            "unsupported: fixed-point backend not implemented yet"
+        );
+    }
+}
+
+#[test]
+fn order_is_preserved_and_blank_lines_are_skipped() {
+    let mut input = String::new();
+    let mut ids = Vec::new();
+    for i in 0..200 {
+        let line = match i % 4 {
+            0 => {
+                json!({"id": format!("L{i}"), "model": "hemi_const", "n": [0, i, 1], "axis": [0, 0, 1]})
+            }
+            1 => {
+                json!({"id": format!("L{i}"), "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1]})
+            }
+            2 => json!({"id": format!("L{i}"), "model": "line_lambert"}),
+            _ => {
+                json!({"id": format!("L{i}"), "model": "sh9_irradiance", "n": [1, 0, i], "coeffs": GRACE})
+            }
+        };
+        input.push_str(&format!("{line}\n"));
+        if i % 7 == 0 {
+            input.push_str("\n   \r\n");
+        }
+        ids.push(format!("L{i}"));
+    }
+    // A last line without a newline still counts.
+    input.push_str(r#"{"id":"end","model":"hemi_const","n":[0,0,1],"axis":[0,0,1]}"#);
+    ids.push("end".to_owned());
+    let (out, code) = run_raw("f32", &input);
+    assert_eq!(code, 0);
+    assert_eq!(out.len(), ids.len());
+    for (line, id) in out.iter().zip(&ids) {
+        let v: Value = serde_json::from_str(line).unwrap();
+        assert_eq!(v["id"], *id);
+    }
+}
+
+#[test]
+fn closed_stdout_does_not_panic() {
+    // Lots of output to a reader that goes away after the first line.
+    let line = r#"{"id":"a","model":"hemi_const","n":[0,0,1],"axis":[0,0,1]}"#;
+    let input: String = std::iter::repeat_n(format!("{line}\n"), 200_000).collect();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["eval", "--backend", "f64"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        // The child may exit before reading everything: ignore the broken pipe here.
+        let _ = stdin.write_all(input.as_bytes());
+    });
+    let mut stdout = child.stdout.take().unwrap();
+    let mut first = [0u8; 16];
+    std::io::Read::read_exact(&mut stdout, &mut first).unwrap();
+    drop(stdout);
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+}
