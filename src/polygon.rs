@@ -279,26 +279,38 @@ fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
     if !(size > 0.0) || !size.is_finite() {
         return Err(Error::ZeroArea);
     }
-    // Newell's normal of the polygon relative to vertex 0 (scaled by 1/size to avoid overflow).
-    let mut nn = [0.0f64; 3];
-    for i in 0..n {
+    // A plane first: the largest of the fan cross products (v_i - v0) x (v_i+1 - v0). (Newell's
+    // normal cannot serve here: a crossed "bowtie" has a zero Newell normal but is not simple.)
+    let cross3 = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let mut plane = [0.0f64; 3];
+    let mut best = 0.0f64;
+    for i in 1..n - 1 {
         let a = sub(v(i), o).map(|x| x / size);
         let b = sub(v(i + 1), o).map(|x| x / size);
-        nn[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        nn[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        nn[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        let c = cross3(a, b);
+        let l = dot(c, c);
+        if l > best {
+            best = l;
+            plane = c;
+        }
     }
-    let len = libm::sqrt(dot(nn, nn));
-    // Twice the area over size^2; a sliver of relative area 1e-14 is zero area to f64.
-    if !(len > 1e-14) {
+    // All vertices collinear (to f64 precision): zero area.
+    if !(best > 1e-28) {
         return Err(Error::ZeroArea);
     }
-    let unit = nn.map(|x| x / len);
+    let plane = plane.map(|x| x / libm::sqrt(best));
     for i in 1..n {
-        if libm::fabs(dot(unit, sub(v(i), o))) > PLANAR_TOL * size {
+        if libm::fabs(dot(plane, sub(v(i), o))) > PLANAR_TOL * size {
             return Err(Error::NotPlanar);
         }
     }
+    let unit = plane;
     // Simplicity in the plane: drop the dominant axis of the normal.
     let ax = unit.map(libm::fabs);
     let (ia, ib) = if ax[0] >= ax[1] && ax[0] >= ax[2] {
@@ -338,7 +350,21 @@ fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
             }
         }
     }
-    Ok(unit)
+    // Newell's normal (twice the area vector, over size^2) for the area and the orientation.
+    let mut nn = [0.0f64; 3];
+    for i in 0..n {
+        let a = sub(v(i), o).map(|x| x / size);
+        let b = sub(v(i + 1), o).map(|x| x / size);
+        nn[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        nn[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        nn[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let len = libm::sqrt(dot(nn, nn));
+    // A simple polygon of relative area below 1e-14 is zero area to f64.
+    if !(len > 1e-14) {
+        return Err(Error::ZeroArea);
+    }
+    Ok(nn.map(|x| x / len))
 }
 
 fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
