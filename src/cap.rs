@@ -29,6 +29,9 @@
 //! `E(pi/2 - sigma) = ss^3`, `E' = -cs ss^2`; `E(pi/2) = (sigma - cs ss)/pi`, `E' = -ss^2/2`;
 //! `E(pi/2 + sigma) = 0`, `E' = 0`. It needs `w = acos(c)` per sample. Its error against the
 //! exact model is measured in `tests/cap.rs` and tabulated in the README.
+//!
+//! Beside it, [`CapLight::lambert_hermite_cos`] places the same two segments in `c = cos w`
+//! (slopes `dE/dc = E'(w)/(-sin w)`): no arc cosine, and a smaller error for `sigma <= pi/4`.
 
 use crate::{Error, Real, Vec3};
 
@@ -55,6 +58,10 @@ pub(crate) struct HermiteFillet<T> {
     ss2: T,
     lo: [T; 4],
     hi: [T; 4],
+    /// The variant in `c = cos w`: segments on [-ss, 0] and [0, ss].
+    ss: T,
+    cos_lo: [T; 4],
+    cos_hi: [T; 4],
 }
 
 /// Cubic Hermite coefficients on [0, 1] from end values and end slopes (already scaled by the
@@ -78,13 +85,38 @@ impl<T: Real> HermiteFillet<T> {
         let e_mid = (sigma - cs * ss) * T::FRAC_1_PI;
         let lo = hermite_coeffs(ss2 * ss, e_mid, -h * cs * ss2, -h * T::HALF * ss2);
         let hi = hermite_coeffs(e_mid, T::ZERO, -h * T::HALF * ss2, T::ZERO);
+        // In c: dE/dc = E'(w)/(-sin w): ss^2 at c = ss, ss^2/2 at c = 0, 0 at c = -ss; the
+        // interval length is ss.
+        let ss3 = ss2 * ss;
+        let cos_lo = hermite_coeffs(T::ZERO, e_mid, T::ZERO, T::HALF * ss3);
+        let cos_hi = hermite_coeffs(e_mid, ss3, T::HALF * ss3, ss3);
         HermiteFillet {
             sigma,
             cs,
             ss2,
             lo,
             hi,
+            ss,
+            cos_lo,
+            cos_hi,
         }
+    }
+
+    /// The variant in `c = cos w` (no arc cosine).
+    #[inline]
+    pub(crate) fn eval_cos(&self, c: T) -> T {
+        if c >= self.ss {
+            return (c * self.ss2).clamp01();
+        }
+        if c <= -self.ss || !(self.ss > T::ZERO) {
+            return T::ZERO;
+        }
+        let (k, y) = if c < T::ZERO {
+            (&self.cos_lo, (c + self.ss) / self.ss)
+        } else {
+            (&self.cos_hi, c / self.ss)
+        };
+        (((k[0] * y + k[1]) * y + k[2]) * y + k[3]).clamp01()
     }
 
     /// The approximation at `c = cos w`, `w` (both of the same direction).
@@ -164,6 +196,25 @@ impl<T: Real> CapLight<T> {
     pub fn lambert(&self, n: Vec3<T>) -> T {
         match n.normalize() {
             Some(n) => cap_lambert_from_cos(n.dot(self.axis), self.cos_sigma, self.sin_sigma),
+            None => T::ZERO,
+        }
+    }
+
+    /// A variant of [`CapLight::lambert_hermite`] (not a spec model id): the same two Hermite
+    /// segments with the same end values and slopes, but as cubics in `c = cos w` instead of
+    /// `w`, so it needs no arc cosine (cost: 1 normalization, 1 dot product, 1 division, a
+    /// cubic). Measured max error against the exact model (README): smaller than Snyder's for
+    /// `sigma <= pi/4` (7.4e-4 against 1.9e-3 at pi/4), larger above `3 pi/8` (7e-2 at pi/2,
+    /// where the slope condition at `c = -1` is wrong for a function linear in `c`). Use it for
+    /// small lights (lamps, the sun).
+    ///
+    /// Fallback: 0 for a zero or non-finite `n`.
+    #[inline]
+    pub fn lambert_hermite_cos(&self, n: Vec3<T>) -> T {
+        match n.normalize() {
+            Some(n) => self
+                .hermite
+                .eval_cos(n.dot(self.axis).clamp(-T::ONE, T::ONE)),
             None => T::ZERO,
         }
     }
