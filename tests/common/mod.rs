@@ -1,0 +1,595 @@
+//! Shared test support: the independent quadrature ([`quadrature`]), a seeded PRNG, input
+//! rounding for the low-precision backends, error tracking and case generators.
+#![allow(dead_code, unused_imports)]
+
+pub mod quadrature;
+
+use arealight::{Real, Rgb, Vec3};
+pub use quadrature::{add, cross, dot, norm, normalize, scale, sub, Quad, V3};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+// ---------------------------------------------------------------------------------------------
+// PRNG
+// ---------------------------------------------------------------------------------------------
+
+/// splitmix64: small, seeded, deterministic.
+#[derive(Clone, Debug)]
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed ^ 0x9e37_79b9_7f4a_7c15)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+    /// Uniform in [a, b).
+    pub fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.unit()
+    }
+    /// Uniform integer in [0, n).
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next_u64() % n
+    }
+    /// Uniform on the unit sphere.
+    pub fn dir(&mut self) -> V3 {
+        let z = self.range(-1.0, 1.0);
+        let phi = self.range(0.0, TAU);
+        let s = ((1.0 - z) * (1.0 + z)).sqrt();
+        [s * phi.cos(), s * phi.sin(), z]
+    }
+    /// A direction at angle `w` from the unit vector `axis`, random azimuth.
+    pub fn dir_at(&mut self, axis: V3, w: f64) -> V3 {
+        let (e1, e2) = frame(axis);
+        let phi = self.range(0.0, TAU);
+        add(
+            scale(axis, w.cos()),
+            scale(add(scale(e1, phi.cos()), scale(e2, phi.sin())), w.sin()),
+        )
+    }
+    /// A random direction, randomly scaled (not unit length).
+    pub fn sdir(&mut self) -> V3 {
+        let d = self.dir();
+        self.stretch(d)
+    }
+    /// A random non-unit scale of a direction (implementations must normalize).
+    pub fn stretch(&mut self, v: V3) -> V3 {
+        let s = [0.25, 1.0, 3.7][self.below(3) as usize];
+        scale(v, s)
+    }
+}
+
+/// An orthonormal pair perpendicular to the unit vector `a` (right-handed with `a`).
+pub fn frame(a: V3) -> (V3, V3) {
+    let e1 = quadrature::any_perp(a);
+    (e1, cross(a, e1))
+}
+
+/// `axis cos(w) + perp sin(w)`: the direction at angle `w` from `axis` toward `perp`.
+pub fn rotate_toward(axis: V3, perp: V3, w: f64) -> V3 {
+    add(scale(axis, w.cos()), scale(perp, w.sin()))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scalar conversion
+// ---------------------------------------------------------------------------------------------
+
+pub fn v<T: Real>(a: V3) -> Vec3<T> {
+    Vec3::from_f64(a)
+}
+pub fn rgb<T: Real>(a: V3) -> Rgb<T> {
+    Rgb::from_f64(a)
+}
+/// `x` rounded to `T` and back (the input the low-precision backend actually sees).
+pub fn rd<T: Real>(x: f64) -> f64 {
+    T::from_f64(x).to_f64()
+}
+pub fn rdv<T: Real>(a: V3) -> V3 {
+    [rd::<T>(a[0]), rd::<T>(a[1]), rd::<T>(a[2])]
+}
+/// `x` rounded to `T`, stepping down if rounding pushed it above `max` (e.g. pi/2 as f32 is
+/// above pi/2), so both backends accept the same value.
+pub fn rd_max<T: Real>(x: f64, max: f64) -> f64 {
+    let mut y = x.min(max);
+    loop {
+        let r = rd::<T>(y);
+        if r <= max {
+            return r;
+        }
+        y -= 1e-7 * max.abs();
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Error tracking
+// ---------------------------------------------------------------------------------------------
+
+/// Max absolute error of one model x backend, with the worst case's description.
+pub struct MaxErr {
+    pub name: String,
+    pub max: f64,
+    pub worst: String,
+    pub count: usize,
+}
+
+impl MaxErr {
+    pub fn new(name: &str) -> Self {
+        MaxErr {
+            name: name.to_string(),
+            max: 0.0,
+            worst: String::from("(none)"),
+            count: 0,
+        }
+    }
+    /// Records `|got - want|`; `case` describes the inputs (only built for a new worst).
+    pub fn add<F: FnOnce() -> String>(&mut self, got: f64, want: f64, case: F) {
+        self.count += 1;
+        let err = if got.is_finite() {
+            (got - want).abs()
+        } else {
+            f64::INFINITY
+        };
+        if err > self.max || (err.is_nan() && !self.max.is_nan()) {
+            self.max = err;
+            self.worst = format!("{} | got {got:.17e} want {want:.17e}", case());
+        }
+    }
+    pub fn report(&self) {
+        println!(
+            "[maxerr] {:<44} max abs err {:.3e} over {} cases; worst: {}",
+            self.name, self.max, self.count, self.worst
+        );
+    }
+    /// Prints, then asserts `max <= tol`.
+    pub fn check(&self, tol: f64) {
+        self.report();
+        assert!(
+            self.max <= tol,
+            "{}: max abs err {:.3e} > {:.1e}; worst case: {}",
+            self.name,
+            self.max,
+            tol,
+            self.worst
+        );
+    }
+}
+
+/// Max absolute error per case kind (printed as a breakdown; asserts nothing).
+#[derive(Default)]
+pub struct ByKind(pub std::collections::BTreeMap<String, f64>);
+
+impl ByKind {
+    pub fn add(&mut self, kind: &str, got: f64, want: f64) {
+        let e = (got - want).abs();
+        let slot = self.0.entry(kind.to_string()).or_insert(0.0);
+        if !(e <= *slot) {
+            *slot = e;
+        }
+    }
+    pub fn report(&self, title: &str) {
+        println!("{title}: max abs err by case kind");
+        for (k, e) in &self.0 {
+            println!("    {k:<52} {e:.3e}");
+        }
+    }
+}
+
+/// Checks several trackers, printing all before failing on any.
+pub fn check_all(list: &[(&MaxErr, f64)]) {
+    for (e, _) in list {
+        e.report();
+    }
+    let bad: Vec<String> = list
+        .iter()
+        .filter(|(e, tol)| !(e.max <= *tol))
+        .map(|(e, tol)| {
+            format!(
+                "{}: max abs err {:.3e} > {:.1e}; worst case: {}",
+                e.name, e.max, tol, e.worst
+            )
+        })
+        .collect();
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tolerances
+// ---------------------------------------------------------------------------------------------
+
+/// f64 library vs quadrature.
+pub const TOL_F64: f64 = 1e-9;
+/// f32 (libm) vs f64 library on the same rounded inputs.
+pub const TOL_F32: f64 = 2e-6;
+/// Fast32 vs f64 library on the same rounded inputs.
+pub const TOL_FAST32: f64 = 1.0 / 1024.0;
+
+/// The Phong exponents every Phong test covers.
+pub const EXPONENTS: [u32; 7] = [0, 1, 2, 3, 63, 64, 255];
+
+// ---------------------------------------------------------------------------------------------
+// Cap configurations
+// ---------------------------------------------------------------------------------------------
+
+/// Half-angles sigma worth testing: 0, tiny, small, mid, near pi/2, exactly pi/2.
+pub fn sigma_grid() -> Vec<f64> {
+    vec![
+        0.0,
+        1e-9,
+        1e-6,
+        1e-3,
+        0.0047,
+        0.05,
+        PI / 16.0,
+        0.3,
+        PI / 8.0,
+        0.6,
+        PI / 4.0,
+        1.0,
+        3.0 * PI / 8.0,
+        1.4,
+        FRAC_PI_2 - 1e-3,
+        FRAC_PI_2 - 1e-6,
+        FRAC_PI_2 - 1e-9,
+        FRAC_PI_2,
+    ]
+}
+
+/// Angles w between the weight axis and the source axis worth testing for a cap of half-angle
+/// `sigma`: both ends, the tangencies w = pi/2 +- sigma and just either side, w = sigma
+/// (the cap touches the weight axis), pi/2, and a few interior values.
+pub fn w_grid(sigma: f64) -> Vec<f64> {
+    let mut ws = vec![
+        0.0,
+        1e-9,
+        1e-4,
+        0.3,
+        1.0,
+        FRAC_PI_2,
+        2.0,
+        2.8,
+        PI - 1e-6,
+        PI,
+    ];
+    for c in [FRAC_PI_2 - sigma, FRAC_PI_2 + sigma, sigma] {
+        for d in [-1e-3, -1e-7, 0.0, 1e-7, 1e-3] {
+            ws.push(c + d);
+        }
+    }
+    ws.retain(|w| (0.0..=PI).contains(w));
+    ws
+}
+
+/// (axis, sigma, n): the sigma grid x the w grid (tangencies w = pi/2 +- sigma and either
+/// side, w = sigma, both ends), random orientation, plus random cases.
+pub fn cap_cases(rng: &mut Rng, random: usize) -> Vec<(V3, f64, V3)> {
+    let mut out = Vec::new();
+    for sigma in sigma_grid() {
+        for w in w_grid(sigma) {
+            let a = rng.dir();
+            let n = rng.dir_at(a, w);
+            out.push((rng.stretch(a), sigma, rng.stretch(n)));
+        }
+    }
+    for _ in 0..random {
+        let a = rng.dir();
+        let n = rng.dir();
+        out.push((rng.stretch(a), rng.range(0.0, FRAC_PI_2), n));
+    }
+    out
+}
+
+/// (center, radius, p, n): distances from 1.001 radii (very close) to 1000 radii, n random and
+/// at the tangencies of the sphere's cap.
+pub fn sphere_cases(rng: &mut Rng, random: usize) -> Vec<(V3, f64, V3, V3)> {
+    let mut out = Vec::new();
+    let ratios = [1.001, 1.01, 1.2, 2.0, 10.0, 1000.0];
+    for (i, &ratio) in ratios.iter().cycle().take(6 * 12).enumerate() {
+        let radius = rng.range(0.1, 3.0);
+        let center = scale(rng.dir(), rng.range(0.0, 5.0));
+        let toward = rng.dir();
+        let p = sub(center, scale(toward, ratio * radius));
+        let sigma = (1.0 / ratio).asin();
+        let w = match i / 6 % 6 {
+            0 => FRAC_PI_2 - sigma,
+            1 => FRAC_PI_2 + sigma,
+            2 => FRAC_PI_2,
+            3 => 0.0,
+            4 => PI,
+            _ => rng.range(0.0, PI),
+        };
+        let n = rng.dir_at(toward, w);
+        out.push((center, radius, p, n));
+    }
+    for _ in 0..random {
+        let radius = rng.range(0.05, 2.0);
+        let center = scale(rng.dir(), rng.range(0.0, 3.0));
+        let d = radius * (1.0 + rng.range(0.0, 1.0).powi(3) * 20.0) + 1e-3;
+        let p = add(center, scale(rng.dir(), d));
+        let n = rng.sdir();
+        out.push((center, radius, p, n));
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------------
+// Polygon configurations
+// ---------------------------------------------------------------------------------------------
+
+/// A polygon light case: vertices, shading point, and a weight axis (n or r).
+#[derive(Clone, Debug)]
+pub struct PolyCase {
+    pub kind: String,
+    pub verts: Vec<V3>,
+    pub p: V3,
+    pub k: V3,
+}
+
+impl PolyCase {
+    pub fn describe(&self) -> String {
+        format!(
+            "{} verts={:?} p={:?} k={:?}",
+            self.kind, self.verts, self.p, self.k
+        )
+    }
+}
+
+/// Places 2D outline points in 3D: `center + size (x e1 + y e2)` for a random plane.
+pub fn place(rng: &mut Rng, pts: &[[f64; 2]], center: V3, size: f64) -> Vec<V3> {
+    let nrm = rng.dir();
+    let (e1, e2) = frame(nrm);
+    // A random in-plane rotation.
+    let t = rng.range(0.0, TAU);
+    let (c, s) = (t.cos(), t.sin());
+    pts.iter()
+        .map(|&[x, y]| {
+            let (x, y) = (c * x - s * y, s * x + c * y);
+            add(center, scale(add(scale(e1, x), scale(e2, y)), size))
+        })
+        .collect()
+}
+
+/// A random star-shaped (hence simple) outline with `k` vertices; may be non-convex.
+pub fn star_shaped(rng: &mut Rng, k: usize, rmin: f64) -> Vec<[f64; 2]> {
+    (0..k)
+        .map(|j| {
+            let a = TAU * (j as f64 + rng.range(0.0, 0.8)) / k as f64;
+            let r = rng.range(rmin, 1.0);
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect()
+}
+
+/// A regular star with `k` spikes (2k vertices), inner radius `ri`.
+pub fn star(k: usize, ri: f64) -> Vec<[f64; 2]> {
+    (0..2 * k)
+        .map(|j| {
+            let a = PI * j as f64 / k as f64;
+            let r = if j % 2 == 0 { 1.0 } else { ri };
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect()
+}
+
+/// An L-shape (6 vertices, one reflex corner).
+pub fn l_shape() -> Vec<[f64; 2]> {
+    vec![
+        [-0.5, -0.5],
+        [0.7, -0.5],
+        [0.7, -0.1],
+        [-0.1, -0.1],
+        [-0.1, 0.6],
+        [-0.5, 0.6],
+    ]
+}
+
+/// A U-shape (8 vertices, two reflex corners): a horizon through the notch clips it into two.
+pub fn u_shape() -> Vec<[f64; 2]> {
+    vec![
+        [-0.6, -0.5],
+        [0.6, -0.5],
+        [0.6, 0.6],
+        [0.3, 0.6],
+        [0.3, -0.1],
+        [-0.3, -0.1],
+        [-0.3, 0.6],
+        [-0.6, 0.6],
+    ]
+}
+
+/// Random polygon cases: random shapes and placements, random weight axis (so most cases cross
+/// the horizon somewhere). At most 8 vertices.
+pub fn random_polygons(rng: &mut Rng, count: usize) -> Vec<PolyCase> {
+    let mut out = Vec::with_capacity(count);
+    for i in 0..count {
+        let (kind, pts): (&str, _) = match i % 5 {
+            0 => ("triangle", star_shaped(rng, 3, 0.3)),
+            1 => ("quad", star_shaped(rng, 4, 0.3)),
+            2 => ("star-shaped-7", star_shaped(rng, 7, 0.2)),
+            3 => ("L-shape", l_shape()),
+            _ => ("U-shape", u_shape()),
+        };
+        let dist = rng.range(0.3, 3.0);
+        let center = scale(rng.dir(), dist);
+        let size = rng.range(0.2, 2.0);
+        let verts = place(rng, &pts, center, size);
+        let d = rng.dir();
+        let k = rng.stretch(d);
+        out.push(PolyCase {
+            kind: kind.to_string(),
+            verts,
+            p: [0.0; 3],
+            k,
+        });
+    }
+    out
+}
+
+/// Adversarial polygon cases (at most 8 vertices): partly below the horizon (including the
+/// horizon through a vertex and through the notch of non-convex shapes), wholly below, nearly
+/// edge-on to p (foot outside and inside), p close to a vertex or an edge, stars.
+pub fn adversarial_polygons(rng: &mut Rng) -> Vec<PolyCase> {
+    let mut out = Vec::new();
+    let shapes: Vec<(&'static str, Vec<[f64; 2]>)> = vec![
+        ("square", vec![[-1., -1.], [1., -1.], [1., 1.], [-1., 1.]]),
+        ("triangle", vec![[-1., -0.7], [1.2, -0.4], [0.1, 1.0]]),
+        ("L-shape", l_shape()),
+        ("U-shape", u_shape()),
+        ("star4", star(4, 0.3)),
+    ];
+    for (name, pts) in &shapes {
+        // The plane z = 1 (normal +z), outline scaled by s, shifted by (ox, oy).
+        for &(s, ox, oy) in &[(1.0, 0.0, 0.0), (0.8, 0.9, 0.2), (0.5, 2.5, 0.0)] {
+            let verts: Vec<V3> = pts
+                .iter()
+                .map(|&[x, y]| [ox + s * x, oy + s * y, 1.0])
+                .collect();
+            // Weight axes: straight at it, tilted so the horizon cuts the polygon at several
+            // places, through a vertex, through the notch, edge-on, facing away.
+            let mut ks: Vec<V3> = vec![[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+            for t in [
+                0.3,
+                0.7,
+                1.2,
+                FRAC_PI_2 - 0.05,
+                FRAC_PI_2,
+                FRAC_PI_2 + 0.2,
+                2.5,
+            ] {
+                for az in [0.0, 0.9, 2.0, 4.0] {
+                    ks.push([t.sin() * f64::cos(az), t.sin() * f64::sin(az), t.cos()]);
+                }
+            }
+            // Horizon exactly through vertex 0: k perpendicular to verts[0] (p at origin).
+            let v0 = verts[0];
+            ks.push(normalize(cross(v0, [0.3, 1.0, 0.2])));
+            // Horizon through the polygon's centroid direction along x.
+            ks.push([1.0, 0.0, 0.0]);
+            ks.push([-1.0, 0.0, 0.0]);
+            ks.push([0.0, 1.0, 0.0]);
+            for k in ks {
+                out.push(PolyCase {
+                    kind: format!("{name}, horizon cuts"),
+                    verts: verts.clone(),
+                    p: [0.0; 3],
+                    k,
+                });
+            }
+        }
+        // Nearly edge-on: p at height h above the plane z = 1 (relative to size 1).
+        for &h in &[1e-2, 1e-4, 1e-6] {
+            for &(fx, fy, tag) in &[
+                (0.0, 0.0, "foot inside"),
+                (1.3, 0.1, "foot outside near edge"),
+                (3.0, 2.0, "foot far outside"),
+                (1.0 + 1e-3, 0.0, "foot just outside edge"),
+            ] {
+                let verts: Vec<V3> = pts.iter().map(|&[x, y]| [x, y, 1.0]).collect();
+                let p = [fx, fy, 1.0 - h];
+                for k in [
+                    [0.0, 0.0, 1.0],
+                    [0.3, 0.2, 1.0],
+                    [1.0, 0.0, 0.05],
+                    [-1.0, 0.3, 0.0],
+                    [0.0, 0.0, -1.0],
+                    [0.2, -1.0, 0.3],
+                ] {
+                    out.push(PolyCase {
+                        kind: format!("{name}, edge-on h={h:e}, {tag}"),
+                        verts: verts.clone(),
+                        p,
+                        k,
+                    });
+                }
+            }
+        }
+        // p close to a vertex and to an edge midpoint (distance 1e-3).
+        let verts: Vec<V3> = pts.iter().map(|&[x, y]| [x, y, 1.0]).collect();
+        let mid = scale(add(verts[0], verts[1]), 0.5);
+        for p in [
+            sub(verts[0], [0.0, 0.0, 1e-3]),
+            sub(mid, [0.0, 0.0, 1e-3]),
+            sub(verts[1], [1e-3, 1e-3, 1e-3]),
+        ] {
+            for k in [[0.0, 0.0, 1.0], [0.5, 0.5, 0.7], [1.0, -0.2, 0.0]] {
+                out.push(PolyCase {
+                    kind: format!("{name}, p near vertex/edge"),
+                    verts: verts.clone(),
+                    p,
+                    k,
+                });
+            }
+        }
+    }
+    // A random rigid motion of everything, so no case is axis aligned.
+    let rot = {
+        let a = rng.dir();
+        let (b, c) = frame(a);
+        [a, b, c]
+    };
+    let shift = scale(rng.dir(), rng.range(0.0, 5.0));
+    let tr = |x: V3| add([dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)], shift);
+    let rt = |x: V3| [dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)];
+    for c in &mut out {
+        c.verts = c.verts.iter().map(|&x| tr(x)).collect();
+        c.p = tr(c.p);
+        c.k = rt(c.k);
+    }
+    out
+}
+
+/// Extremely edge-on cases: p at height h in {1e-8, 1e-10, 1e-12} (relative to size 1) below
+/// the plane of a triangle, a square and an L-shape, the foot inside (and, for the L, in the
+/// notch), with weight axes tilted so the horizon cuts the projection (f64 only: rounding the
+/// inputs to f32 moves p by more than h).
+pub fn extreme_edge_on(rng: &mut Rng) -> Vec<PolyCase> {
+    let shapes: Vec<(&'static str, Vec<[f64; 2]>)> = vec![
+        ("triangle", vec![[-1., -0.7], [1.2, -0.4], [0.1, 1.0]]),
+        ("square", vec![[-1., -1.], [1., -1.], [1., 1.], [-1., 1.]]),
+        ("L-shape", l_shape()),
+    ];
+    let mut out = Vec::new();
+    for (name, pts) in &shapes {
+        let verts: Vec<V3> = pts.iter().map(|&[x, y]| [x, y, 1.0]).collect();
+        for &h in &[1e-8, 1e-10, 1e-12] {
+            for foot in [[0.05, 0.02], [-0.3, -0.3], [0.2, 0.3]] {
+                for k in [
+                    [0.6, -0.2, 0.8],
+                    [1.0, 0.3, 0.01],
+                    [0.2, 1.0, -0.3],
+                    [0.0, 0.0, 1.0],
+                ] {
+                    out.push(PolyCase {
+                        kind: format!("{name}, h={h:e}"),
+                        verts: verts.clone(),
+                        p: [foot[0], foot[1], 1.0 - h],
+                        k,
+                    });
+                }
+            }
+        }
+    }
+    // A random rotation about the origin (kept small in size so h stays representable).
+    let rot = {
+        let a = rng.dir();
+        let (b, c) = frame(a);
+        [a, b, c]
+    };
+    let rt = |x: V3| [dot(rot[0], x), dot(rot[1], x), dot(rot[2], x)];
+    for c in &mut out {
+        c.verts = c.verts.iter().map(|&x| rt(x)).collect();
+        c.p = rt(c.p);
+        c.k = rt(c.k);
+    }
+    out
+}
+
+/// `PI` re-exported for brevity in test files.
+pub const PI_: f64 = PI;

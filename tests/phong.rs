@@ -1,0 +1,357 @@
+//! Phong models: `[phong_hemi_const]`, `[phong_hemi_cos]`, `[phong_cap]`, `[phong_sphere]`,
+//! `[phong_polygon]`, for m in {0, 1, 2, 3, 63, 64, 255} (and random m <= 255).
+//!
+//! f64 library vs the independent quadrature (<= 1e-9), then f32 and Fast32 vs f64 on the same
+//! rounded inputs (<= 2e-6 and <= 1/1024).
+
+mod common;
+
+use arealight::{CapLight, Fast32, HemisphereLight, PhongLobe, PolygonLight, Real, SphereLight};
+use common::quadrature as qd;
+use common::*;
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// (axis, r) pairs for the hemisphere lights: the w grid of a pi/2 cap (r parallel and
+/// antiparallel to the axis, perpendicular, near each) plus random.
+fn hemi_cases(rng: &mut Rng, random: usize) -> Vec<(V3, V3)> {
+    let mut out = Vec::new();
+    for w in w_grid(FRAC_PI_2) {
+        let a = rng.dir();
+        let r = rng.dir_at(a, w);
+        out.push((rng.stretch(a), rng.stretch(r)));
+    }
+    out.push(([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]));
+    out.push(([0.0, 0.0, 1.0], [0.0, 0.0, -1.0]));
+    for _ in 0..random {
+        let a = rng.sdir();
+        let r = rng.sdir();
+        out.push((a, r));
+    }
+    out
+}
+
+#[test]
+fn hemisphere_f64_vs_quadrature() {
+    let mut rng = Rng::new(0xf00);
+    let q = Quad::STD;
+    let mut e_const = MaxErr::new("phong_hemi_const f64 vs quadrature");
+    let mut e_cos = MaxErr::new("phong_hemi_cos f64 vs quadrature");
+    let cases = hemi_cases(&mut rng, 60);
+    let mut ms: Vec<u32> = EXPONENTS.to_vec();
+    ms.extend((0..6).map(|_| rng.below(256) as u32));
+    for &m in &ms {
+        let lobe = PhongLobe::<f64>::new(m).unwrap();
+        for &(axis, r) in &cases {
+            let h = HemisphereLight::<f64>::new(v(axis)).unwrap();
+            let case = || format!("m={m} axis={axis:?} r={r:?}");
+            e_const.add(
+                h.phong_const(&lobe, v(r)),
+                qd::phong_hemi_const(axis, r, m, &q),
+                case,
+            );
+            e_cos.add(
+                h.phong_cos(&lobe, v(r)),
+                qd::phong_hemi_cos(axis, r, m, &q),
+                case,
+            );
+        }
+    }
+    check_all(&[(&e_const, TOL_F64), (&e_cos, TOL_F64)]);
+}
+
+#[test]
+fn cap_f64_vs_quadrature() {
+    let mut rng = Rng::new(0xf01);
+    let q = Quad::STD;
+    let mut e_cap = MaxErr::new("phong_cap f64 vs quadrature");
+    let cases = cap_cases(&mut rng, 100);
+    for (i, &(axis, sigma, r)) in cases.iter().enumerate() {
+        let cap = CapLight::<f64>::new(v(axis), sigma).unwrap();
+        // Every exponent of the list on the grid; a random one on the random cases.
+        let ms: Vec<u32> = if i + 100 < cases.len() {
+            EXPONENTS.to_vec()
+        } else {
+            vec![rng.below(256) as u32]
+        };
+        for m in ms {
+            let lobe = PhongLobe::<f64>::new(m).unwrap();
+            e_cap.add(
+                cap.phong(&lobe, v(r)),
+                qd::phong_cap(axis, sigma, r, m, &q),
+                || format!("m={m} axis={axis:?} sigma={sigma:e} r={r:?}"),
+            );
+        }
+    }
+    e_cap.check(TOL_F64);
+}
+
+#[test]
+fn sphere_f64_vs_quadrature() {
+    let mut rng = Rng::new(0xf02);
+    let q = Quad::STD;
+    let mut e_sph = MaxErr::new("phong_sphere f64 vs quadrature");
+    for (center, radius, p, r) in sphere_cases(&mut rng, 60) {
+        let s = SphereLight::<f64>::new(v(center), radius).unwrap();
+        for &m in &EXPONENTS {
+            let lobe = PhongLobe::<f64>::new(m).unwrap();
+            e_sph.add(
+                s.phong(&lobe, v(p), v(r)),
+                qd::phong_sphere(center, radius, p, r, m, &q),
+                || format!("m={m} center={center:?} radius={radius:e} p={p:?} r={r:?}"),
+            );
+        }
+    }
+    e_sph.check(TOL_F64);
+}
+
+#[test]
+fn polygon_f64_vs_quadrature() {
+    let mut rng = Rng::new(0xf03);
+    let q = Quad::STD;
+    let mut e_rand = MaxErr::new("phong_polygon f64 vs quadrature (random)");
+    let mut e_adv = MaxErr::new("phong_polygon f64 vs quadrature (adversarial)");
+    for c in random_polygons(&mut rng, 60) {
+        let light = PolygonLight::<f64, 8>::new(&c.verts.iter().map(|&x| v(x)).collect::<Vec<_>>())
+            .unwrap();
+        for &m in &EXPONENTS {
+            let lobe = PhongLobe::<f64>::new(m).unwrap();
+            e_rand.add(
+                light.phong(&lobe, v(c.p), v(c.k)),
+                qd::phong_polygon(&c.verts, c.p, c.k, m, &q),
+                || format!("m={m} {}", c.describe()),
+            );
+        }
+    }
+    for (i, c) in adversarial_polygons(&mut rng).iter().enumerate() {
+        let light = PolygonLight::<f64, 8>::new(&c.verts.iter().map(|&x| v(x)).collect::<Vec<_>>())
+            .unwrap();
+        // Two exponents per case, rotating through the list.
+        for m in [EXPONENTS[i % 7], EXPONENTS[(i + 3) % 7]] {
+            let lobe = PhongLobe::<f64>::new(m).unwrap();
+            e_adv.add(
+                light.phong(&lobe, v(c.p), v(c.k)),
+                qd::phong_polygon(&c.verts, c.p, c.k, m, &q),
+                || format!("m={m} {}", c.describe()),
+            );
+        }
+    }
+    let mut e_ext: Vec<MaxErr> = EXPONENTS
+        .iter()
+        .map(|m| {
+            MaxErr::new(&format!(
+                "phong_polygon f64 vs quadrature (h <= 1e-8), m={m}"
+            ))
+        })
+        .collect();
+    for c in extreme_edge_on(&mut rng) {
+        let light = PolygonLight::<f64, 8>::new(&c.verts.iter().map(|&x| v(x)).collect::<Vec<_>>())
+            .unwrap();
+        for (j, &m) in EXPONENTS.iter().enumerate() {
+            let lobe = PhongLobe::<f64>::new(m).unwrap();
+            e_ext[j].add(
+                light.phong(&lobe, v(c.p), v(c.k)),
+                qd::phong_polygon(&c.verts, c.p, c.k, m, &q),
+                || format!("m={m} {}", c.describe()),
+            );
+        }
+    }
+    let mut all = vec![(&e_rand, TOL_F64), (&e_adv, TOL_F64)];
+    all.extend(e_ext.iter().map(|e| (e, TOL_F64)));
+    check_all(&all);
+}
+
+/// `PhongLobe::odd_only(m)` evaluates the exponent `m | 1`; for odd `m` it is the exact lobe.
+#[test]
+fn odd_only_is_next_odd() {
+    let cap = CapLight::<f64>::new(v([0.2, 0.3, 1.0]), 0.4).unwrap();
+    let mut err = MaxErr::new("phong odd_only(m) vs new(m | 1)");
+    for m in 0..=64u32 {
+        let fast = PhongLobe::<f64>::odd_only(m).unwrap();
+        let exact = PhongLobe::<f64>::new(m | 1).unwrap();
+        assert_eq!(fast.exponent(), m);
+        assert_eq!(fast.evaluated_exponent(), m | 1);
+        for r in [[0.0, 0.0, 1.0], [1.0, 0.2, 0.1], [0.3, -0.4, 0.5]] {
+            err.add(cap.phong(&fast, v(r)), cap.phong(&exact, v(r)), || {
+                format!("m={m} r={r:?}")
+            });
+        }
+    }
+    err.check(0.0);
+}
+
+/// f32 / Fast32 vs f64 on the same rounded inputs.
+macro_rules! lowp_tests {
+    ($modname:ident, $T:ty, $tol:expr) => {
+        mod $modname {
+            use super::*;
+            type T = $T;
+            const TOL: f64 = $tol;
+            const NAME: &str = stringify!($T);
+
+            fn lobes(m: u32) -> (PhongLobe<T>, PhongLobe<f64>) {
+                (
+                    PhongLobe::<T>::new(m).unwrap(),
+                    PhongLobe::<f64>::new(m).unwrap(),
+                )
+            }
+
+            #[test]
+            fn hemisphere_vs_f64() {
+                let mut rng = Rng::new(0xa00);
+                let mut cases = hemi_cases(&mut rng, 3000);
+                for i in 0..=1024 {
+                    let w = PI * i as f64 / 1024.0;
+                    let a = rng.dir();
+                    cases.push((a, rng.dir_at(a, w)));
+                }
+                let mut e_const: Vec<MaxErr> = EXPONENTS
+                    .iter()
+                    .map(|m| MaxErr::new(&format!("phong_hemi_const {NAME} vs f64, m={m}")))
+                    .collect();
+                let mut e_cos: Vec<MaxErr> = EXPONENTS
+                    .iter()
+                    .map(|m| MaxErr::new(&format!("phong_hemi_cos {NAME} vs f64, m={m}")))
+                    .collect();
+                for (j, &m) in EXPONENTS.iter().enumerate() {
+                    let (lo_l, hi_l) = lobes(m);
+                    for &(axis, r) in &cases {
+                        let (axis, r) = (rdv::<T>(axis), rdv::<T>(r));
+                        let lo = HemisphereLight::<T>::new(v(axis)).unwrap();
+                        let hi = HemisphereLight::<f64>::new(v(axis)).unwrap();
+                        let case = || format!("m={m} axis={axis:?} r={r:?}");
+                        e_const[j].add(
+                            lo.phong_const(&lo_l, v(r)).to_f64(),
+                            hi.phong_const(&hi_l, v(r)),
+                            case,
+                        );
+                        e_cos[j].add(
+                            lo.phong_cos(&lo_l, v(r)).to_f64(),
+                            hi.phong_cos(&hi_l, v(r)),
+                            case,
+                        );
+                    }
+                }
+                let all: Vec<(&MaxErr, f64)> = e_const
+                    .iter()
+                    .chain(e_cos.iter())
+                    .map(|e| (e, TOL))
+                    .collect();
+                check_all(&all);
+            }
+
+            #[test]
+            fn cap_vs_f64() {
+                let mut rng = Rng::new(0xa01);
+                let mut cases = cap_cases(&mut rng, 3000);
+                for i in 0..=32 {
+                    let sigma = FRAC_PI_2 * i as f64 / 32.0;
+                    for j in 0..=256 {
+                        let w = PI * j as f64 / 256.0;
+                        let a = rng.dir();
+                        cases.push((a, sigma, rng.dir_at(a, w)));
+                    }
+                }
+                let mut errs: Vec<MaxErr> = EXPONENTS
+                    .iter()
+                    .map(|m| MaxErr::new(&format!("phong_cap {NAME} vs f64, m={m}")))
+                    .collect();
+                for (j, &m) in EXPONENTS.iter().enumerate() {
+                    let (lo_l, hi_l) = lobes(m);
+                    for &(axis, sigma, r) in &cases {
+                        let (axis, r) = (rdv::<T>(axis), rdv::<T>(r));
+                        let sigma = rd_max::<T>(sigma, FRAC_PI_2);
+                        let lo = CapLight::<T>::new(v(axis), T::from_f64(sigma)).unwrap();
+                        let hi = CapLight::<f64>::new(v(axis), sigma).unwrap();
+                        errs[j].add(
+                            lo.phong(&lo_l, v(r)).to_f64(),
+                            hi.phong(&hi_l, v(r)),
+                            || format!("m={m} axis={axis:?} sigma={sigma:e} r={r:?}"),
+                        );
+                    }
+                }
+                let all: Vec<(&MaxErr, f64)> = errs.iter().map(|e| (e, TOL)).collect();
+                check_all(&all);
+            }
+
+            #[test]
+            fn sphere_vs_f64() {
+                let mut rng = Rng::new(0xa02);
+                let cases = sphere_cases(&mut rng, 3000);
+                let mut errs: Vec<MaxErr> = EXPONENTS
+                    .iter()
+                    .map(|m| MaxErr::new(&format!("phong_sphere {NAME} vs f64, m={m}")))
+                    .collect();
+                for (j, &m) in EXPONENTS.iter().enumerate() {
+                    let (lo_l, hi_l) = lobes(m);
+                    for &(center, radius, p, r) in &cases {
+                        let (center, p, r) = (rdv::<T>(center), rdv::<T>(p), rdv::<T>(r));
+                        let radius = rd::<T>(radius);
+                        let lo = SphereLight::<T>::new(v(center), T::from_f64(radius)).unwrap();
+                        let hi = SphereLight::<f64>::new(v(center), radius).unwrap();
+                        let Ok(want) = hi.try_phong(&hi_l, v(p), v(r)) else {
+                            continue;
+                        };
+                        errs[j].add(lo.phong(&lo_l, v(p), v(r)).to_f64(), want, || {
+                            format!("m={m} center={center:?} radius={radius:e} p={p:?} r={r:?}")
+                        });
+                    }
+                }
+                let all: Vec<(&MaxErr, f64)> = errs.iter().map(|e| (e, TOL)).collect();
+                check_all(&all);
+            }
+
+            #[test]
+            fn polygon_vs_f64() {
+                let mut rng = Rng::new(0xa03);
+                let random = random_polygons(&mut rng, 1500);
+                let adversarial = adversarial_polygons(&mut rng);
+                let mut all_errs = Vec::new();
+                let mut skipped = 0;
+                for (set, cases) in [("random", &random), ("adversarial", &adversarial)] {
+                    let mut errs: Vec<MaxErr> = EXPONENTS
+                        .iter()
+                        .map(|m| {
+                            MaxErr::new(&format!("phong_polygon {NAME} vs f64 ({set}), m={m}"))
+                        })
+                        .collect();
+                    let mut by = ByKind::default();
+                    for (j, &m) in EXPONENTS.iter().enumerate() {
+                        let (lo_l, hi_l) = lobes(m);
+                        for c in cases.iter() {
+                            let verts: Vec<V3> = c.verts.iter().map(|&x| rdv::<T>(x)).collect();
+                            let (p, r) = (rdv::<T>(c.p), rdv::<T>(c.k));
+                            let lo_v: Vec<_> = verts.iter().map(|&x| v::<T>(x)).collect();
+                            let hi_v: Vec<_> = verts.iter().map(|&x| v::<f64>(x)).collect();
+                            let (Ok(lo), Ok(hi)) = (
+                                PolygonLight::<T, 8>::new(&lo_v),
+                                PolygonLight::<f64, 8>::new(&hi_v),
+                            ) else {
+                                skipped += 1;
+                                continue;
+                            };
+                            let got = lo.phong(&lo_l, v(p), v(r)).to_f64();
+                            let want = hi.phong(&hi_l, v(p), v(r));
+                            let parity = if m % 2 == 0 { "even m" } else { "odd m" };
+                            by.add(&format!("{parity}: {}", c.kind), got, want);
+                            errs[j].add(got, want, || {
+                                format!("m={m} {} verts={verts:?} p={p:?} r={r:?}", c.kind)
+                            });
+                        }
+                    }
+                    if set == "adversarial" {
+                        by.report(&format!("phong_polygon {NAME} vs f64 (adversarial)"));
+                    }
+                    all_errs.extend(errs);
+                }
+                println!(
+                    "phong_polygon {NAME}: {skipped} (case, m) skipped (invalid after rounding)"
+                );
+                let all: Vec<(&MaxErr, f64)> = all_errs.iter().map(|e| (e, TOL)).collect();
+                check_all(&all);
+            }
+        }
+    };
+}
+
+lowp_tests!(f32_vs_f64, f32, TOL_F32);
+lowp_tests!(fast32_vs_f64, Fast32, TOL_FAST32);
