@@ -289,8 +289,11 @@ impl<T: Real> SphereLight<T> {
         if !(d > self.radius) {
             return Err(Error::PointInsideSphere);
         }
-        let ss = (self.radius / d).clamp01();
-        let cs = ((T::ONE - ss) * (T::ONE + ss)).sqrt();
+        let inv_d = T::ONE / d;
+        let ss = (self.radius * inv_d).clamp01();
+        // cos sigma from (d - r)(d + r), not from 1 - ss^2: near the sphere ss is close to 1
+        // and 1 - ss would keep only the rounding of r/d.
+        let cs = (((d - self.radius) * (d + self.radius)).sqrt() * inv_d).clamp01();
         Ok(SphereCap { axis, cs, ss })
     }
 

@@ -46,7 +46,7 @@
 
 use crate::cap::{CapLight, SphereLight};
 use crate::hemisphere::{cos_sin_between, HemisphereLight};
-use crate::polygon::{for_each_clipped_edge, PolygonLight, SolidAngleFan};
+use crate::polygon::{for_each_clipped_edge, ApexFan, PolygonLight};
 use crate::sine_power::{sine_power_integral, sine_power_integral_pi};
 use crate::{Error, Real, Vec3};
 
@@ -162,15 +162,24 @@ impl<T: Real> HemisphereLight<T> {
 /// Snyder's eq. 24 in the stable form of the module docs, from `c = cos w`, `s = sin w`
 /// (`w` between `r` and the cap axis), `cs`, `ss`.
 fn phong_cap_from_angle<T: Real>(m: u32, c: T, s: T, cs: T, ss: T) -> T {
-    if c <= -ss {
+    // q^2 = ss^2 - c^2 = s^2 - cs^2: the first form cancels when sigma and w are both near
+    // pi/2 or c and ss both near 1, the second when both are small; take the factors of the
+    // smaller pair. q^2 > 0 exactly when the cap's boundary crosses the horizon of r.
+    let q2 = if ss * ss > T::HALF {
+        (s - cs) * (s + cs)
+    } else {
+        (ss - c) * (ss + c)
+    };
+    let partial = q2 > T::ZERO;
+    if !partial && c <= T::ZERO {
         return T::ZERO;
     }
-    let full = c >= ss;
+    let full = !partial;
     // x = pi - phi_1 and its sine; q = sqrt(ss^2 - c^2).
     let (x, sin_x, q) = if full {
         (T::PI, T::ZERO, T::ZERO)
     } else {
-        let q = ((ss - c) * (ss + c)).sqrt();
+        let q = q2.sqrt();
         let den = ss * s;
         let x = q.atan2(-cs * c);
         if den > T::TINY {
@@ -302,32 +311,39 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         let m = lobe.m;
         let even = m & 1 == 0;
         let mut sum = T::ZERO;
-        let mut fan = SolidAngleFan::new();
-        for_each_clipped_edge(self.vertices(), p, r, |a, b, horizon| {
+        let mut fan = ApexFan::new(r);
+        for_each_clipped_edge(self.vertices(), p, r, |e| {
             if even {
-                fan.add(a, b);
+                fan.add(&e);
             }
-            if m == 0 {
-                return;
-            }
-            let g = a.cross(b);
-            let sin_x = g.length();
-            if !(sin_x > T::EPSILON) {
-                return; // A vanishing edge: x ~ sin x ~ 0 contributes nothing.
-            }
-            let gu = g * (T::ONE / sin_x);
-            let cos_x = a.dot(b);
-            let x = sin_x.atan2(cos_x);
-            let rg = r.dot(gu);
-            if horizon {
-                // On the horizon r.a = r.(gu x a) = 0: only the k = 0 term (odd m) survives.
+            if e.horizon {
                 if !even {
-                    sum += x * rg;
+                    // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x.
+                    sum += e.horizon_angle(r);
                 }
                 return;
             }
-            let perp = gu.cross(a);
-            let (ra, rp) = (r.dot(a), r.dot(perp));
+            let g = e.ua.cross(e.d);
+            let Some((gu, glen)) = g.normalize_with_length() else {
+                return; // An edge seen end-on: x = 0 contributes nothing.
+            };
+            if m == 0 {
+                return;
+            }
+            let Some(ua) = e.ua.normalize() else {
+                return;
+            };
+            // x = angle(ua, ub) with a consistent (cos x, sin x) pair from (ua.ub, |G|), both
+            // proportional to |ua| |ub|.
+            let dot = e.ua.dot(e.ub);
+            let x = glen.atan2(dot);
+            let scale = dot.abs().max(glen);
+            let (cd, sd) = (dot / scale, glen / scale);
+            let inv = T::ONE / (cd * cd + sd * sd).sqrt();
+            let (cos_x, sin_x) = ((cd * inv).clamp(-T::ONE, T::ONE), (sd * inv).clamp01());
+            let rg = r.dot(gu);
+            let perp = gu.cross(ua);
+            let (ra, rp) = (r.dot(ua), r.dot(perp));
             // f = a^2 + b^2 = 1 - (r.gu)^2: the second form is exact to an ULP near 1, where
             // the recurrence raises f to the power m/2 (see cos_sin_between).
             let f = if rg.abs() < T::HALF {

@@ -111,16 +111,22 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return Ok(T::ZERO);
         }
         let mut sum = T::ZERO;
-        for_each_clipped_edge(&self.verts, p, n, |a, b, _| sum += edge_angle_term(a, b, n));
+        for_each_clipped_edge(&self.verts, p, n, |e| {
+            sum += if e.horizon {
+                e.horizon_angle(n)
+            } else {
+                edge_angle_term(e.ua, e.ub, e.d, n)
+            }
+        });
         Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
     }
 
     /// `[polygon_lambert]`: exact Lambertian irradiance (normalized, in [0, 1]) at `p` with
     /// normal `n`, the polygon clipped to the horizon of `n`.
     ///
-    /// Accuracy: see the README's table. Cost per vertex: 1 normalization, 1 dot product; per
-    /// edge above the horizon: 1 cross product, 1 sqrt, 1 atan2, 1 division; per horizon
-    /// crossing: 1 more normalization. Fallback: 0 for a zero or non-finite input, and 0 when
+    /// Accuracy: see the README's table. Cost per edge above the horizon: 2 cross products,
+    /// 2 dot products, 1 sqrt, 1 atan2, 1 division (no per-vertex normalization); per horizon
+    /// crossing: a few multiply-adds. Fallback: 0 for a zero or non-finite input, and 0 when
     /// `p` is in the polygon's plane.
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
@@ -128,73 +134,113 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     }
 
     /// The solid angle (steradians, in [0, 2 pi]) of the polygon's projection seen from `p`,
-    /// clipped to the hemisphere `u.k >= 0` (`k` unit). 0 when `p` is in the plane.
+    /// clipped to the hemisphere `u.k >= 0` (`k` any length). 0 when `p` is in the plane or `k`
+    /// is zero. Cost per clipped edge: 2 normalizations, 1 cross product, 4 dot products,
+    /// 1 atan2.
     pub fn clipped_solid_angle(&self, p: Vec3<T>, k: Vec3<T>) -> T {
-        if self.in_plane(p) {
+        let Some(k) = k.normalize() else {
+            return T::ZERO;
+        };
+        if !p.is_finite() || self.in_plane(p) {
             return T::ZERO;
         }
-        let mut acc = SolidAngleFan::new();
-        for_each_clipped_edge(&self.verts, p, k, |a, b, _| acc.add(a, b));
+        let mut acc = ApexFan::new(k);
+        for_each_clipped_edge(&self.verts, p, k, |e| acc.add(&e));
         acc.total().abs().min(T::TAU)
     }
 }
 
-/// `(theta/sin theta) ((a x b) . k)` for unit `a`, `b`: the edge term of Lambert's formula
-/// (theta = angle between `a` and `b`; the ratio tends to 1 as the edge shrinks).
-#[inline]
-pub(crate) fn edge_angle_term<T: Real>(a: Vec3<T>, b: Vec3<T>, k: Vec3<T>) -> T {
-    let g = a.cross(b);
-    let s = g.length();
-    let c = a.dot(b);
-    let ratio = if s > T::EPSILON {
-        s.atan2(c) / s
-    } else if c > T::ZERO {
-        T::ONE
-    } else {
-        T::ZERO
-    };
-    ratio * g.dot(k)
+/// One edge of the clipped ring seen from `p`: from `ua` to `ub` (points relative to `p`, not
+/// normalized), `d = ub - ua` computed from the polygon's own edge vector (no cancellation
+/// through `p`), and whether it is an arc of the horizon.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ClippedEdge<T> {
+    pub(crate) ua: Vec3<T>,
+    pub(crate) ub: Vec3<T>,
+    pub(crate) d: Vec3<T>,
+    pub(crate) horizon: bool,
 }
 
-/// Accumulates the signed solid angle of a clipped ring as a fan of spherical triangles.
-pub(crate) struct SolidAngleFan<T> {
-    first: Option<Vec3<T>>,
+impl<T: Real> ClippedEdge<T> {
+    /// The signed angle of a horizon arc about `k`, in (-pi, pi]: the projection of the
+    /// straight segment `ua -> ub` in the horizon plane, positive when it runs
+    /// counter-clockwise about `k`. (For a non-convex polygon the clipped ring may run along the
+    /// horizon in both directions; the arcs then cancel, so each keeps its own sign.) The sign
+    /// comes from the unnormalized `ua x ub`, which keeps its relative accuracy when the arc
+    /// nearly spans pi (the polygon seen nearly edge-on), where the cross product of
+    /// normalized directions is mostly rounding.
+    #[inline]
+    pub(crate) fn horizon_angle(&self, k: Vec3<T>) -> T {
+        self.ua.cross(self.d).dot(k).atan2(self.ua.dot(self.ub))
+    }
+}
+
+/// `theta (G . k)/|G|` with `G = ua x d (= ua x ub)` and `theta = atan2(|G|, ua.ub)`: the edge
+/// term of Lambert's formula from unnormalized endpoints. Scale-free, so no per-vertex
+/// normalization is needed, and `G` from the edge vector `d` keeps its accuracy for edges
+/// seen nearly end-on.
+#[inline]
+pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: Vec3<T>) -> T {
+    let g = ua.cross(d);
+    // Scale to avoid overflow of |G|^2 for large coordinates.
+    let m = g.max_abs();
+    if !(m > T::ZERO) || !m.is_finite() {
+        return T::ZERO;
+    }
+    let g = g * (T::ONE / m);
+    let s = g.length();
+    let theta = (s * m).atan2(ua.dot(ub));
+    (theta * g.dot(k) / s).finite_or_zero()
+}
+
+/// The signed solid angle of a ring clipped to the hemisphere `u.k >= 0`, as a fan of spherical
+/// triangles `(k, a, b)` with apex `k`, one per clipped edge `(a, b)` (Arvo 5.1 sums the same
+/// signed areas). Every clipped point has `u.k >= 0`, so every fan triangle is proper and the
+/// back-and-forth bridges of a non-convex clip cancel exactly. A polygon edge's triangle comes
+/// from Van Oosterom and Strackee's `tan(W/2) = k.(a x b)/(1 + a.b + k.a + k.b)`; a horizon
+/// arc's triangle has two vertices on the equator of `k`, so its area is exactly the arc's
+/// signed angle ([`ClippedEdge::horizon_angle`]): that is the case (a polygon seen nearly
+/// edge-on, the arc spanning nearly pi) where the general formula would divide tiny by tiny.
+pub(crate) struct ApexFan<T> {
+    apex: Vec3<T>,
     sum: T,
 }
 
-impl<T: Real> SolidAngleFan<T> {
-    pub(crate) fn new() -> Self {
-        SolidAngleFan {
-            first: None,
-            sum: T::ZERO,
-        }
+impl<T: Real> ApexFan<T> {
+    pub(crate) fn new(apex: Vec3<T>) -> Self {
+        ApexFan { apex, sum: T::ZERO }
     }
-    /// Adds the triangle (first vertex, a, b) for the clipped edge (a, b).
+
+    /// Adds the triangle (apex, ua, ub) of the clipped edge `e`.
     #[inline]
-    pub(crate) fn add(&mut self, a: Vec3<T>, b: Vec3<T>) {
-        let o = match self.first {
-            Some(o) => o,
-            None => {
-                self.first = Some(a);
-                return;
-            }
+    pub(crate) fn add(&mut self, e: &ClippedEdge<T>) {
+        let k = self.apex;
+        if e.horizon {
+            self.sum += e.horizon_angle(k);
+            return;
+        }
+        let (Some((a, la)), Some((b, lb))) =
+            (e.ua.normalize_with_length(), e.ub.normalize_with_length())
+        else {
+            return;
         };
-        let num = o.dot(a.cross(b));
-        let den = T::ONE + o.dot(a) + a.dot(b) + b.dot(o);
+        let num = k.dot(e.ua.cross(e.d)) / (la * lb);
+        let den = T::ONE + a.dot(b) + k.dot(a) + k.dot(b);
         self.sum += T::TWO * num.atan2(den);
     }
-    /// The signed solid angle (positive for a ring counter-clockwise seen from outside).
+
+    /// The signed solid angle (positive for a ring counter-clockwise seen from outside, the
+    /// convention of the boundary integrals).
     pub(crate) fn total(&self) -> T {
         self.sum
     }
 }
 
 /// Walks the ring `verts` seen from `p`, clipped to the half-space `(v - p).k >= 0`, and calls
-/// `f(a, b, on_horizon)` with the unit directions of each clipped edge in ring order;
-/// `on_horizon` marks the arcs that follow the horizon between a crossing down and the next
-/// crossing up. Returns `false` if no vertex is above the horizon (nothing is called).
-///
-/// No buffer: each vertex is normalized once. A vertex exactly on the horizon counts as above.
+/// `f` with each clipped edge in ring order (see [`ClippedEdge`]); horizon arcs run between a
+/// crossing down and the next crossing up. Returns `false` if no vertex is above the horizon
+/// (nothing is called). No buffer and no normalization. A vertex exactly on the horizon counts
+/// as above.
 pub(crate) fn for_each_clipped_edge<T: Real, F>(
     verts: &[Vec3<T>],
     p: Vec3<T>,
@@ -202,49 +248,65 @@ pub(crate) fn for_each_clipped_edge<T: Real, F>(
     mut f: F,
 ) -> bool
 where
-    F: FnMut(Vec3<T>, Vec3<T>, bool),
+    F: FnMut(ClippedEdge<T>),
 {
     let nv = verts.len();
-    let start = match verts.iter().position(|&v| (v - p).dot(k) >= T::ZERO) {
-        Some(j) => j,
-        None => return false,
+    let Some(start) = verts.iter().position(|&v| (v - p).dot(k) >= T::ZERO) else {
+        return false;
     };
     let mut u0 = verts[start] - p;
     let mut d0 = u0.dot(k);
-    let mut a0 = match u0.normalize() {
-        Some(a) => a,
-        None => return false, // p is a vertex: p lies in the plane, the value is 0.
-    };
+    // The start of the current clipped edge (a vertex or a crossing up).
+    let mut a0 = u0;
     let mut below0 = false;
     let mut exit: Option<Vec3<T>> = None;
     for step in 1..=nv {
+        let i0 = (start + step - 1) % nv;
         let i1 = (start + step) % nv;
         let u1 = verts[i1] - p;
         let d1 = u1.dot(k);
         let below1 = d1 < T::ZERO;
+        let edge = verts[i1] - verts[i0];
         match (below0, below1) {
             (false, false) => {
-                if let Some(a1) = u1.normalize() {
-                    f(a0, a1, false);
-                    a0 = a1;
-                }
+                // Here a0 is the vertex u0, so d is the polygon's own edge.
+                f(ClippedEdge {
+                    ua: a0,
+                    ub: u1,
+                    d: edge,
+                    horizon: false,
+                });
+                a0 = u1;
             }
             (false, true) => {
-                if let Some(x) = crossing(u0, u1, d0, d1) {
-                    f(a0, x, false);
-                    exit = Some(x);
-                }
+                let t = (d0 / (d0 - d1)).clamp01();
+                let x = u0 + edge * t;
+                f(ClippedEdge {
+                    ua: a0,
+                    ub: x,
+                    d: edge * t,
+                    horizon: false,
+                });
+                exit = Some(x);
             }
             (true, false) => {
-                if let Some(x) = crossing(u0, u1, d0, d1) {
-                    if let Some(e) = exit.take() {
-                        f(e, x, true);
-                    }
-                    if let Some(a1) = u1.normalize() {
-                        f(x, a1, false);
-                        a0 = a1;
-                    }
+                let t = (d0 / (d0 - d1)).clamp01();
+                let x = u0 + edge * t;
+                if let Some(e) = exit.take() {
+                    f(ClippedEdge {
+                        ua: e,
+                        ub: x,
+                        d: x - e,
+                        horizon: true,
+                    });
                 }
+                f(ClippedEdge {
+                    ua: x,
+                    ub: u1,
+                    d: edge * (T::ONE - t),
+                    horizon: false,
+                });
+                a0 = u1;
             }
             (true, true) => {}
         }
@@ -253,14 +315,6 @@ where
         below0 = below1;
     }
     true
-}
-
-/// The unit direction of the point where segment `u0 -> u1` crosses the plane `u.k = 0`, given
-/// `d0 = u0.k` and `d1 = u1.k` of opposite signs.
-#[inline]
-fn crossing<T: Real>(u0: Vec3<T>, u1: Vec3<T>, d0: T, d1: T) -> Option<Vec3<T>> {
-    let t = (d0 / (d0 - d1)).clamp01();
-    (u0 + (u1 - u0) * t).normalize()
 }
 
 /// Validates a polygon in f64; returns its unit normal (Newell's method).
