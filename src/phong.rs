@@ -42,7 +42,18 @@
 //! tangent: `x = atan2(q, -cs c)`, `sin x = q/(ss sin w)`, `cos x = -cs c/(ss sin w)`; the horizon arc
 //! of the odd case is `K = 2 atan2(q, cs)` (eq. 23), and the clipped solid angle of the even case
 //! is `I(0) = 2 pi - 2 atan2(q, c) - 2 cs x` (the area of a cap cut by a great circle). When the
-//! cap is wholly above the horizon `x = pi` and `I(0) = 2 pi (1 - cs)`.
+//! cap is wholly above the horizon `x = pi` and `I(0) = 2 pi (1 - cs)`. `q^2 = ss^2 - c^2` is
+//! also `s^2 - cs^2`; the code factors whichever pair is smaller, so it does not cancel when
+//! sigma and w are both near pi/2.
+//!
+//! ## Accuracy
+//!
+//! f64 agrees with the quadrature of the definition to 1e-10 or better for every `m` tested
+//! (0 to 255). In f32 the recurrences raise numbers within an ULP of 1 to powers up to `m`, so
+//! the error grows about as `m 2^-24`: within 2e-6 of f64 up to `m` of about 64, 4.5e-6 (cap) and
+//! 1.3e-6 (polygon) at `m = 255`. The inputs are made consistent first (`cos w`, `sin w` with
+//! `c^2 + s^2 = 1`; `f = 1 - (r.G)^2`), which cut the m = 255 error three-fold. The README
+//! tabulates the measured errors.
 
 use crate::cap::{CapLight, SphereLight};
 use crate::hemisphere::{cos_sin_between, HemisphereLight};

@@ -4,34 +4,45 @@
 //! ## Lambert's formula
 //!
 //! For a polygon whose spherical projection seen from `p` lies above the horizon of `n`, with
-//! `a_i` the unit vectors from `p` to its vertices, the normalized irradiance is
+//! `u_i = v_i - p`, the normalized irradiance is
 //!
 //! ```text
-//! E = |sum_i theta_i (G_i . n)| / (2 pi),   G_i = (a_i x a_i+1)/|a_i x a_i+1|,  theta_i = angle(a_i, a_i+1)
+//! E = |sum_i theta_i (G_i . n)/|G_i|| / (2 pi),   G_i = u_i x u_i+1,  theta_i = angle(u_i, u_i+1)
 //! ```
 //!
-//! (Snyder eq. 8; the absolute value makes it independent of the winding). We compute each
-//! edge term as `(theta/sin theta) ((a_i x a_i+1) . n)` with `theta = atan2(|a x b|, a.b)`:
-//! Iwanicki's `Omega/sin(Omega)` form, which needs no arc cosine (that loses half its digits
-//! for short edges) and no division by a vanishing `|a x b|` (the ratio tends to 1).
+//! (Snyder eq. 8; the absolute value makes it independent of the winding). Each edge term is
+//! computed as `atan2(|G|, u_i . u_i+1) (G . n)/|G|` with `G = u_i x (v_i+1 - v_i)`: Iwanicki's
+//! `Omega/sin(Omega)` form written with unnormalized vectors. It is scale-free, so no vertex
+//! direction is normalized; it needs no arc cosine (which loses half its digits for short
+//! edges); and `G` taken from the polygon's own edge vector keeps its accuracy when an edge is
+//! seen nearly end-on.
 //!
 //! ## Clipping to the horizon
 //!
 //! The part of the polygon below the plane through `p` normal to `n` must not count. The ring of
 //! vertices is clipped on the fly (as in Snyder's appendix H, no buffer): an edge that dives
 //! below the horizon ends at its crossing point, and the clipped ring follows the horizon great
-//! circle to the point where the boundary comes back up. That horizon arc is an ordinary edge
-//! whose two ends lie in the plane; for a non-convex polygon there may be several. Both the
-//! Lambert and the Phong models (with `r` in place of `n`) use the same clipping
-//! ([`for_each_clipped_edge`]).
+//! circle to the point where the boundary comes back up. Such a horizon arc lies on the great
+//! circle normal to `n`, so its term is exactly its signed angle about `n`, computed from the
+//! unnormalized crossing points (accurate even when the arc spans nearly pi, i.e. the polygon
+//! is seen nearly edge-on). For a non-convex polygon the clipped ring may run along the horizon
+//! back and forth; those arcs cancel. The Lambert and Phong models (with `r` in place of `n`)
+//! share the clipping.
 //!
 //! ## Solid angle
 //!
-//! The solid angle of the clipped projection is the signed sum, over the clipped edges `(a, b)`,
-//! of the solid angles of the spherical triangles `(a_0, a, b)` fanned from the first clipped
-//! vertex, each by Van Oosterom and Strackee's `tan(W/2) = a0.(a x b)/(1 + a0.a + a.b + b.a0)`.
-//! The projection of a planar polygon not containing `p` lies in an open hemisphere, so every
-//! fan triangle is proper and the signed sum is exact for convex and non-convex polygons alike.
+//! The solid angle of the clipped projection (needed by Phong with even exponents) is the
+//! signed sum of the spherical triangles `(k, a, b)` over the clipped edges `(a, b)`, fanned
+//! from the clipping direction `k` itself: every clipped point has `u.k >= 0`, so each triangle
+//! is proper (Van Oosterom and Strackee's formula for polygon edges; the exact arc angle for
+//! horizon arcs, whose triangle has two vertices on the equator of `k`).
+//!
+//! ## Accuracy
+//!
+//! f64 agrees with the quadrature of the definition to 1e-13 or better, including points within
+//! 1e-12 of the polygon's plane. In f32 the error is about `2^-24 size/dist` when `p` is within
+//! `dist` of an edge or vertex of the polygon (the individual edge terms are then
+//! ill-conditioned although their sum is not); the README gives the measured figures.
 
 use crate::{Error, Real, Vec3};
 use heapless::Vec;

@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | `f64` | the reference | `libm` (correctly rounded sqrt, atan2 within 1 ULP) |
 //! | `f32` | the firmware float path | `libm` (`sqrtf`, `atan2f`, ...) |
-//! | [`Fast32`] | f32 with the crate's own cheap approximations | see [`fast32`](crate::real::fast32) |
+//! | [`Fast32`] | f32 with the crate's own cheap approximations | see [`fast32`] |
 //!
 //! The trait is sealed: the crate's models rely on the error bounds of each backend, which are
 //! stated and tested here, so only this crate implements it. The fixed-point types of the

@@ -3,7 +3,7 @@
 //! their error against the exact model is measured in tests/fixtures.rs).
 //!
 //! f64 library vs the independent quadrature (<= 1e-9), then f32 and Fast32 vs f64 on the same
-//! rounded inputs (<= 2e-6 and <= 1/1024).
+//! rounded inputs (<= 2e-6 and <= 1/1024 in the main regime; see `f32_bound` in tests/common).
 
 mod common;
 
@@ -36,14 +36,23 @@ fn f64_vs_quadrature() {
 }
 
 /// f32 / Fast32 vs f64 on the same rounded inputs: a dense (sigma, w) grid (129 x 1025 plus
-/// the adversarial grids) and random spheres.
+/// the adversarial grids) and random spheres, every case against its own bound (`f32_bound` in
+/// tests/common: 2e-6 and 1/1024 in the main regime).
 macro_rules! lowp_tests {
-    ($modname:ident, $T:ty, $tol:expr) => {
+    ($modname:ident, $T:ty, $bounds:expr) => {
         mod $modname {
             use super::*;
             type T = $T;
-            const TOL: f64 = $tol;
+            const B: LowpBounds = $bounds;
             const NAME: &str = stringify!($T);
+
+            fn cond(sens: f64) -> Cond {
+                Cond {
+                    m: 0,
+                    sens,
+                    near: None,
+                }
+            }
 
             #[test]
             fn cap_vs_f64() {
@@ -57,29 +66,34 @@ macro_rules! lowp_tests {
                         cases.push((a, sigma, rng.dir_at(a, w)));
                     }
                 }
-                let mut e_cap = MaxErr::new(&format!("cap_lambert {NAME} vs f64"));
-                let mut e_her = MaxErr::new(&format!("cap_lambert_hermite {NAME} vs f64"));
+                let mut e_cap = Bounded::new(&format!("cap_lambert {NAME} vs f64"), B);
+                let mut e_her = Bounded::new(&format!("cap_lambert_hermite {NAME} vs f64"), B);
                 for (axis, sigma, n) in cases {
                     let (axis, n) = (rdv::<T>(axis), rdv::<T>(n));
                     let sigma = rd_max::<T>(sigma, FRAC_PI_2);
                     let lo = CapLight::<T>::new(v(axis), T::from_f64(sigma)).unwrap();
                     let hi = CapLight::<f64>::new(v(axis), sigma).unwrap();
+                    let x = flat(&[axis, n], &[sigma]);
+                    let cap = |x: &[f64]| CapLight::<f64>::new(v(v3_at(x, 0)), x[6]).ok();
                     let case = || format!("axis={axis:?} sigma={sigma:e} n={n:?}");
-                    e_cap.add(lo.lambert(v(n)).to_f64(), hi.lambert(v(n)), case);
+                    let s = sensitivity(|x| Some(cap(x)?.lambert(v(v3_at(x, 1)))), &x);
+                    e_cap.add(lo.lambert(v(n)).to_f64(), hi.lambert(v(n)), cond(s), case);
+                    let s = sensitivity(|x| Some(cap(x)?.lambert_hermite(v(v3_at(x, 1)))), &x);
                     e_her.add(
                         lo.lambert_hermite(v(n)).to_f64(),
                         hi.lambert_hermite(v(n)),
+                        cond(s),
                         case,
                     );
                 }
-                check_all(&[(&e_cap, TOL), (&e_her, TOL)]);
+                check_bounded(&[&e_cap, &e_her]);
             }
 
             #[test]
             fn sphere_vs_f64() {
                 let mut rng = Rng::new(0x5ee);
-                let mut e_sph = MaxErr::new(&format!("sphere_lambert {NAME} vs f64"));
-                let mut e_her = MaxErr::new(&format!("sphere_lambert_hermite {NAME} vs f64"));
+                let mut e_sph = Bounded::new(&format!("sphere_lambert {NAME} vs f64"), B);
+                let mut e_her = Bounded::new(&format!("sphere_lambert_hermite {NAME} vs f64"), B);
                 let mut skipped = 0;
                 // Max error by band of d/radius (the f32 cap of a sphere seen from close by is
                 // ill-conditioned: cos(sigma) = sqrt(1 - (r/d)^2) amplifies the rounding of d).
@@ -94,17 +108,36 @@ macro_rules! lowp_tests {
                         skipped += 1; // rounding put p inside the sphere
                         continue;
                     };
-                    let case = || format!("center={center:?} radius={radius:e} p={p:?} n={n:?}");
-                    let got = lo.lambert(v(p), v(n)).to_f64();
                     let ratio = norm(sub(p, center)) / radius;
+                    let case = || {
+                        format!(
+                            "center={center:?} radius={radius:e} p={p:?} n={n:?} d/radius={ratio:.6}"
+                        )
+                    };
+                    let got = lo.lambert(v(p), v(n)).to_f64();
                     let b = bands.windows(2).position(|w| ratio >= w[0] && ratio < w[1]);
                     if let Some(b) = b {
                         band_max[b] = band_max[b].max((got - want).abs());
                     }
-                    e_sph.add(got, want, case);
+                    let x = flat(&[center, p, n], &[radius]);
+                    let sph = |x: &[f64]| SphereLight::<f64>::new(v(v3_at(x, 0)), x[9]).ok();
+                    let s = sensitivity(
+                        |x| sph(x)?.try_lambert(v(v3_at(x, 1)), v(v3_at(x, 2))).ok(),
+                        &x,
+                    );
+                    e_sph.add(got, want, cond(s), case);
+                    let s = sensitivity(
+                        |x| {
+                            sph(x)?
+                                .try_lambert_hermite(v(v3_at(x, 1)), v(v3_at(x, 2)))
+                                .ok()
+                        },
+                        &x,
+                    );
                     e_her.add(
                         lo.lambert_hermite(v(p), v(n)).to_f64(),
                         hi.lambert_hermite(v(p), v(n)),
+                        cond(s),
                         case,
                     );
                 }
@@ -117,11 +150,11 @@ macro_rules! lowp_tests {
                         band_max[b]
                     );
                 }
-                check_all(&[(&e_sph, TOL), (&e_her, TOL)]);
+                check_bounded(&[&e_sph, &e_her]);
             }
         }
     };
 }
 
-lowp_tests!(f32_vs_f64, f32, TOL_F32);
-lowp_tests!(fast32_vs_f64, Fast32, TOL_FAST32);
+lowp_tests!(f32_vs_f64, f32, BOUNDS_F32);
+lowp_tests!(fast32_vs_f64, Fast32, BOUNDS_FAST32);

@@ -1,7 +1,7 @@
 //! Hemisphere lights: `[hemi_const]`, `[hemi_cos]`, `[sky_overcast]`, `[sky_ground]`.
 //!
 //! f64 library vs the independent quadrature (<= 1e-9), then f32 and Fast32 vs f64 on the same
-//! rounded inputs (<= 2e-6 and <= 1/1024).
+//! rounded inputs (<= 2e-6 and <= 1/1024 in the main regime; see `f32_bound` in tests/common).
 
 mod common;
 
@@ -90,13 +90,14 @@ fn f64_vs_quadrature() {
 }
 
 /// f32 / Fast32 vs f64 on the same rounded inputs: a dense grid over the angle w in [0, pi]
-/// (4097 values plus the adversarial ones, random orientation) and random cases.
+/// (4097 values plus the adversarial ones, random orientation) and random cases, every case
+/// against its own bound (`f32_bound` in tests/common: 2e-6 and 1/1024 in the main regime).
 macro_rules! lowp_tests {
-    ($modname:ident, $T:ty, $tol:expr) => {
+    ($modname:ident, $T:ty, $bounds:expr) => {
         mod $modname {
             use super::*;
             type T = $T;
-            const TOL: f64 = $tol;
+            const B: LowpBounds = $bounds;
             const NAME: &str = stringify!($T);
 
             fn grid(rng: &mut Rng) -> Vec<(V3, V3)> {
@@ -109,29 +110,54 @@ macro_rules! lowp_tests {
                 out
             }
 
+            fn cond(sens: f64) -> Cond {
+                Cond {
+                    m: 0,
+                    sens,
+                    near: None,
+                }
+            }
+
             #[test]
             fn hemisphere_vs_f64() {
                 let mut rng = Rng::new(0x1234);
-                let mut e_const = MaxErr::new(&format!("hemi_const {NAME} vs f64"));
-                let mut e_cos = MaxErr::new(&format!("hemi_cos {NAME} vs f64"));
-                let mut e_sky = MaxErr::new(&format!("sky_overcast {NAME} vs f64"));
-                let mut e_sg = MaxErr::new(&format!("sky_ground {NAME} vs f64"));
+                let mut e_const = Bounded::new(&format!("hemi_const {NAME} vs f64"), B);
+                let mut e_cos = Bounded::new(&format!("hemi_cos {NAME} vs f64"), B);
+                let mut e_sky = Bounded::new(&format!("sky_overcast {NAME} vs f64"), B);
+                let mut e_sg = Bounded::new(&format!("sky_ground {NAME} vs f64"), B);
                 for (axis, n) in grid(&mut rng) {
                     let (axis, n) = (rdv::<T>(axis), rdv::<T>(n));
                     let case = || format!("axis={axis:?} n={n:?}");
                     let lo = HemisphereLight::<T>::new(v(axis)).unwrap();
                     let hi = HemisphereLight::<f64>::new(v(axis)).unwrap();
+                    let x = flat(&[axis, n], &[]);
+                    let light = |x: &[f64]| HemisphereLight::<f64>::new(v(v3_at(x, 0))).ok();
+                    let s = sensitivity(|x| Some(light(x)?.lambert_const(v(v3_at(x, 1)))), &x);
                     e_const.add(
                         lo.lambert_const(v(n)).to_f64(),
                         hi.lambert_const(v(n)),
+                        cond(s),
                         case,
                     );
-                    e_cos.add(lo.lambert_cos(v(n)).to_f64(), hi.lambert_cos(v(n)), case);
+                    let s = sensitivity(|x| Some(light(x)?.lambert_cos(v(v3_at(x, 1)))), &x);
+                    e_cos.add(
+                        lo.lambert_cos(v(n)).to_f64(),
+                        hi.lambert_cos(v(n)),
+                        cond(s),
+                        case,
+                    );
                     let c = rd::<T>(rng.range(0.0, 1.0));
                     let lo = OvercastSky::<T>::new(v(axis), <T as arealight::Real>::from_f64(c))
                         .unwrap();
                     let hi = OvercastSky::<f64>::new(v(axis), c).unwrap();
-                    e_sky.add(lo.lambert(v(n)).to_f64(), hi.lambert(v(n)), || {
+                    let s = sensitivity(
+                        |x| {
+                            let sky = OvercastSky::<f64>::new(v(v3_at(x, 0)), x[6]).ok()?;
+                            Some(sky.lambert(v(v3_at(x, 1))))
+                        },
+                        &flat(&[axis, n], &[c]),
+                    );
+                    e_sky.add(lo.lambert(v(n)).to_f64(), hi.lambert(v(n)), cond(s), || {
                         format!("zenith={axis:?} c={c} n={n:?}")
                     });
                     let s = rdv::<T>([rng.unit(), rng.unit(), rng.unit()]);
@@ -144,17 +170,30 @@ macro_rules! lowp_tests {
                         .unwrap()
                         .irradiance(v(n))
                         .to_f64();
+                    let x = flat(&[axis, n, s, g], &[]);
                     for ch in 0..3 {
-                        e_sg.add(lo[ch], hi[ch], || {
+                        let sens = sensitivity(
+                            |x| {
+                                let sg = SkyGround::<f64>::new(
+                                    v(v3_at(x, 0)),
+                                    rgb(v3_at(x, 2)),
+                                    rgb(v3_at(x, 3)),
+                                )
+                                .ok()?;
+                                Some(sg.irradiance(v(v3_at(x, 1))).to_f64()[ch])
+                            },
+                            &x,
+                        );
+                        e_sg.add(lo[ch], hi[ch], cond(sens), || {
                             format!("up={axis:?} sky={s:?} ground={g:?} n={n:?} ch {ch}")
                         });
                     }
                 }
-                check_all(&[(&e_const, TOL), (&e_cos, TOL), (&e_sky, TOL), (&e_sg, TOL)]);
+                check_bounded(&[&e_const, &e_cos, &e_sky, &e_sg]);
             }
         }
     };
 }
 
-lowp_tests!(f32_vs_f64, f32, TOL_F32);
-lowp_tests!(fast32_vs_f64, Fast32, TOL_FAST32);
+lowp_tests!(f32_vs_f64, f32, BOUNDS_F32);
+lowp_tests!(fast32_vs_f64, Fast32, BOUNDS_FAST32);

@@ -2,7 +2,8 @@
 //! `[phong_polygon]`, for m in {0, 1, 2, 3, 63, 64, 255} (and random m <= 255).
 //!
 //! f64 library vs the independent quadrature (<= 1e-9), then f32 and Fast32 vs f64 on the same
-//! rounded inputs (<= 2e-6 and <= 1/1024).
+//! rounded inputs (<= 2e-6 and <= 1/1024 in the main regime; f32 also <= 2e-6 + m 2^-24 at
+//! high m, and the ill-conditioned and near-boundary bounds of `f32_bound` in tests/common).
 
 mod common;
 
@@ -179,13 +180,16 @@ fn odd_only_is_next_odd() {
     err.check(0.0);
 }
 
-/// f32 / Fast32 vs f64 on the same rounded inputs.
+/// f32 / Fast32 vs f64 on the same rounded inputs, every case against its own bound
+/// (`f32_bound` in tests/common: main regime 2e-6 and 1/1024; f32 also `+ m 2^-24` for high m,
+/// `+ 4 sensitivity` for ill-conditioned cases, `+ 16 2^-24 size / dist` for polygons near
+/// their boundary).
 macro_rules! lowp_tests {
-    ($modname:ident, $T:ty, $tol:expr) => {
+    ($modname:ident, $T:ty, $bounds:expr) => {
         mod $modname {
             use super::*;
             type T = $T;
-            const TOL: f64 = $tol;
+            const B: LowpBounds = $bounds;
             const NAME: &str = stringify!($T);
 
             fn lobes(m: u32) -> (PhongLobe<T>, PhongLobe<f64>) {
@@ -193,6 +197,13 @@ macro_rules! lowp_tests {
                     PhongLobe::<T>::new(m).unwrap(),
                     PhongLobe::<f64>::new(m).unwrap(),
                 )
+            }
+
+            fn trackers(model: &str, set: &str) -> Vec<Bounded> {
+                EXPONENTS
+                    .iter()
+                    .map(|m| Bounded::new(&format!("{model} {NAME} vs f64{set}, m={m}"), B))
+                    .collect()
             }
 
             #[test]
@@ -204,39 +215,45 @@ macro_rules! lowp_tests {
                     let a = rng.dir();
                     cases.push((a, rng.dir_at(a, w)));
                 }
-                let mut e_const: Vec<MaxErr> = EXPONENTS
-                    .iter()
-                    .map(|m| MaxErr::new(&format!("phong_hemi_const {NAME} vs f64, m={m}")))
-                    .collect();
-                let mut e_cos: Vec<MaxErr> = EXPONENTS
-                    .iter()
-                    .map(|m| MaxErr::new(&format!("phong_hemi_cos {NAME} vs f64, m={m}")))
-                    .collect();
+                let mut e_const = trackers("phong_hemi_const", "");
+                let mut e_cos = trackers("phong_hemi_cos", "");
                 for (j, &m) in EXPONENTS.iter().enumerate() {
                     let (lo_l, hi_l) = lobes(m);
                     for &(axis, r) in &cases {
                         let (axis, r) = (rdv::<T>(axis), rdv::<T>(r));
                         let lo = HemisphereLight::<T>::new(v(axis)).unwrap();
                         let hi = HemisphereLight::<f64>::new(v(axis)).unwrap();
+                        let x = flat(&[axis, r], &[]);
+                        let light = |x: &[f64]| HemisphereLight::<f64>::new(v(v3_at(x, 0))).ok();
+                        let s_const =
+                            sensitivity(|x| Some(light(x)?.phong_const(&hi_l, v(v3_at(x, 1)))), &x);
+                        let s_cos =
+                            sensitivity(|x| Some(light(x)?.phong_cos(&hi_l, v(v3_at(x, 1)))), &x);
                         let case = || format!("m={m} axis={axis:?} r={r:?}");
                         e_const[j].add(
                             lo.phong_const(&lo_l, v(r)).to_f64(),
                             hi.phong_const(&hi_l, v(r)),
+                            Cond {
+                                m,
+                                sens: s_const,
+                                near: None,
+                            },
                             case,
                         );
                         e_cos[j].add(
                             lo.phong_cos(&lo_l, v(r)).to_f64(),
                             hi.phong_cos(&hi_l, v(r)),
+                            Cond {
+                                m,
+                                sens: s_cos,
+                                near: None,
+                            },
                             case,
                         );
                     }
                 }
-                let all: Vec<(&MaxErr, f64)> = e_const
-                    .iter()
-                    .chain(e_cos.iter())
-                    .map(|e| (e, TOL))
-                    .collect();
-                check_all(&all);
+                let all: Vec<&Bounded> = e_const.iter().chain(e_cos.iter()).collect();
+                check_bounded(&all);
             }
 
             #[test]
@@ -251,10 +268,7 @@ macro_rules! lowp_tests {
                         cases.push((a, sigma, rng.dir_at(a, w)));
                     }
                 }
-                let mut errs: Vec<MaxErr> = EXPONENTS
-                    .iter()
-                    .map(|m| MaxErr::new(&format!("phong_cap {NAME} vs f64, m={m}")))
-                    .collect();
+                let mut errs = trackers("phong_cap", "");
                 for (j, &m) in EXPONENTS.iter().enumerate() {
                     let (lo_l, hi_l) = lobes(m);
                     for &(axis, sigma, r) in &cases {
@@ -262,25 +276,33 @@ macro_rules! lowp_tests {
                         let sigma = rd_max::<T>(sigma, FRAC_PI_2);
                         let lo = CapLight::<T>::new(v(axis), T::from_f64(sigma)).unwrap();
                         let hi = CapLight::<f64>::new(v(axis), sigma).unwrap();
+                        let sens = sensitivity(
+                            |x| {
+                                let cap = CapLight::<f64>::new(v(v3_at(x, 0)), x[6]).ok()?;
+                                Some(cap.phong(&hi_l, v(v3_at(x, 1))))
+                            },
+                            &flat(&[axis, r], &[sigma]),
+                        );
                         errs[j].add(
                             lo.phong(&lo_l, v(r)).to_f64(),
                             hi.phong(&hi_l, v(r)),
+                            Cond {
+                                m,
+                                sens,
+                                near: None,
+                            },
                             || format!("m={m} axis={axis:?} sigma={sigma:e} r={r:?}"),
                         );
                     }
                 }
-                let all: Vec<(&MaxErr, f64)> = errs.iter().map(|e| (e, TOL)).collect();
-                check_all(&all);
+                check_bounded(&errs.iter().collect::<Vec<_>>());
             }
 
             #[test]
             fn sphere_vs_f64() {
                 let mut rng = Rng::new(0xa02);
                 let cases = sphere_cases(&mut rng, 3000);
-                let mut errs: Vec<MaxErr> = EXPONENTS
-                    .iter()
-                    .map(|m| MaxErr::new(&format!("phong_sphere {NAME} vs f64, m={m}")))
-                    .collect();
+                let mut errs = trackers("phong_sphere", "");
                 for (j, &m) in EXPONENTS.iter().enumerate() {
                     let (lo_l, hi_l) = lobes(m);
                     for &(center, radius, p, r) in &cases {
@@ -291,13 +313,32 @@ macro_rules! lowp_tests {
                         let Ok(want) = hi.try_phong(&hi_l, v(p), v(r)) else {
                             continue;
                         };
-                        errs[j].add(lo.phong(&lo_l, v(p), v(r)).to_f64(), want, || {
-                            format!("m={m} center={center:?} radius={radius:e} p={p:?} r={r:?}")
-                        });
+                        let sens = sensitivity(
+                            |x| {
+                                let s = SphereLight::<f64>::new(v(v3_at(x, 0)), x[9]).ok()?;
+                                s.try_phong(&hi_l, v(v3_at(x, 1)), v(v3_at(x, 2))).ok()
+                            },
+                            &flat(&[center, p, r], &[radius]),
+                        );
+                        errs[j].add(
+                            lo.phong(&lo_l, v(p), v(r)).to_f64(),
+                            want,
+                            Cond {
+                                m,
+                                sens,
+                                near: None,
+                            },
+                            || {
+                                format!(
+                                    "m={m} center={center:?} radius={radius:e} p={p:?} r={r:?} \
+                                     d/radius={:.6}",
+                                    norm(sub(p, center)) / radius
+                                )
+                            },
+                        );
                     }
                 }
-                let all: Vec<(&MaxErr, f64)> = errs.iter().map(|e| (e, TOL)).collect();
-                check_all(&all);
+                check_bounded(&errs.iter().collect::<Vec<_>>());
             }
 
             #[test]
@@ -308,12 +349,7 @@ macro_rules! lowp_tests {
                 let mut all_errs = Vec::new();
                 let mut skipped = 0;
                 for (set, cases) in [("random", &random), ("adversarial", &adversarial)] {
-                    let mut errs: Vec<MaxErr> = EXPONENTS
-                        .iter()
-                        .map(|m| {
-                            MaxErr::new(&format!("phong_polygon {NAME} vs f64 ({set}), m={m}"))
-                        })
-                        .collect();
+                    let mut errs = trackers("phong_polygon", &format!(" ({set})"));
                     let mut by = ByKind::default();
                     for (j, &m) in EXPONENTS.iter().enumerate() {
                         let (lo_l, hi_l) = lobes(m);
@@ -331,11 +367,27 @@ macro_rules! lowp_tests {
                             };
                             let got = lo.phong(&lo_l, v(p), v(r)).to_f64();
                             let want = hi.phong(&hi_l, v(p), v(r));
-                            let parity = if m % 2 == 0 { "even m" } else { "odd m" };
-                            by.add(&format!("{parity}: {}", c.kind), got, want);
-                            errs[j].add(got, want, || {
+                            let nv = verts.len();
+                            let mut pts = verts.clone();
+                            pts.extend([p, r]);
+                            let sens = sensitivity(
+                                |x| {
+                                    let vs: Vec<_> = (0..nv).map(|i| v(v3_at(x, i))).collect();
+                                    let l = PolygonLight::<f64, 8>::new(&vs).ok()?;
+                                    Some(l.phong(&hi_l, v(v3_at(x, nv)), v(v3_at(x, nv + 1))))
+                                },
+                                &flat(&pts, &[]),
+                            );
+                            let cond = Cond {
+                                m,
+                                sens,
+                                near: near_boundary(&verts, p),
+                            };
+                            let bound = errs[j].add(got, want, cond, || {
                                 format!("m={m} {} verts={verts:?} p={p:?} r={r:?}", c.kind)
                             });
+                            let parity = if m % 2 == 0 { "even m" } else { "odd m" };
+                            by.add(&format!("{parity}: {}", c.kind), got, want, bound);
                         }
                     }
                     if set == "adversarial" {
@@ -346,12 +398,11 @@ macro_rules! lowp_tests {
                 println!(
                     "phong_polygon {NAME}: {skipped} (case, m) skipped (invalid after rounding)"
                 );
-                let all: Vec<(&MaxErr, f64)> = all_errs.iter().map(|e| (e, TOL)).collect();
-                check_all(&all);
+                check_bounded(&all_errs.iter().collect::<Vec<_>>());
             }
         }
     };
 }
 
-lowp_tests!(f32_vs_f64, f32, TOL_F32);
-lowp_tests!(fast32_vs_f64, Fast32, TOL_FAST32);
+lowp_tests!(f32_vs_f64, f32, BOUNDS_F32);
+lowp_tests!(fast32_vs_f64, Fast32, BOUNDS_FAST32);
