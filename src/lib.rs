@@ -61,3 +61,8 @@ pub use polygon::PolygonLight;
 pub use real::{Fast32, Real};
 pub use sh9::{Environment, Sh9, Sh9Irradiance};
 pub use vec3::{Rgb, Vec3};
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
