@@ -54,14 +54,18 @@ pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct HermiteFillet<T> {
     sigma: T,
-    cs: T,
     ss2: T,
     lo: [T; 4],
     hi: [T; 4],
-    /// The variant in `c = cos w`: segments on [-ss, 0] and [0, ss].
+}
+
+/// The same end conditions as cubics in `c = cos w`, on [-ss, 0] and [0, ss].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct HermiteFilletCos<T> {
     ss: T,
-    cos_lo: [T; 4],
-    cos_hi: [T; 4],
+    ss2: T,
+    lo: [T; 4],
+    hi: [T; 4],
 }
 
 /// Cubic Hermite coefficients on [0, 1] from end values and end slopes (already scaled by the
@@ -85,38 +89,7 @@ impl<T: Real> HermiteFillet<T> {
         let e_mid = (sigma - cs * ss) * T::FRAC_1_PI;
         let lo = hermite_coeffs(ss2 * ss, e_mid, -h * cs * ss2, -h * T::HALF * ss2);
         let hi = hermite_coeffs(e_mid, T::ZERO, -h * T::HALF * ss2, T::ZERO);
-        // In c: dE/dc = E'(w)/(-sin w): ss^2 at c = ss, ss^2/2 at c = 0, 0 at c = -ss; the
-        // interval length is ss.
-        let ss3 = ss2 * ss;
-        let cos_lo = hermite_coeffs(T::ZERO, e_mid, T::ZERO, T::HALF * ss3);
-        let cos_hi = hermite_coeffs(e_mid, ss3, T::HALF * ss3, ss3);
-        HermiteFillet {
-            sigma,
-            cs,
-            ss2,
-            lo,
-            hi,
-            ss,
-            cos_lo,
-            cos_hi,
-        }
-    }
-
-    /// The variant in `c = cos w` (no arc cosine).
-    #[inline]
-    pub(crate) fn eval_cos(&self, c: T) -> T {
-        if c >= self.ss {
-            return (c * self.ss2).clamp01();
-        }
-        if c <= -self.ss || !(self.ss > T::ZERO) {
-            return T::ZERO;
-        }
-        let (k, y) = if c < T::ZERO {
-            (&self.cos_lo, (c + self.ss) / self.ss)
-        } else {
-            (&self.cos_hi, c / self.ss)
-        };
-        (((k[0] * y + k[1]) * y + k[2]) * y + k[3]).clamp01()
+        HermiteFillet { sigma, ss2, lo, hi }
     }
 
     /// The approximation at `c = cos w`, `w` (both of the same direction).
@@ -138,6 +111,40 @@ impl<T: Real> HermiteFillet<T> {
     }
 }
 
+impl<T: Real> HermiteFilletCos<T> {
+    #[inline]
+    pub(crate) fn new(sigma: T, cs: T, ss: T) -> Self {
+        let ss2 = ss * ss;
+        let ss3 = ss2 * ss;
+        let e_mid = (sigma - cs * ss) * T::FRAC_1_PI;
+        // dE/dc = E'(w)/(-sin w): ss^2 at c = ss, ss^2/2 at c = 0, 0 at c = -ss; the interval
+        // length is ss.
+        HermiteFilletCos {
+            ss,
+            ss2,
+            lo: hermite_coeffs(T::ZERO, e_mid, T::ZERO, T::HALF * ss3),
+            hi: hermite_coeffs(e_mid, ss3, T::HALF * ss3, ss3),
+        }
+    }
+
+    /// The approximation at `c = cos w`.
+    #[inline]
+    pub(crate) fn eval(&self, c: T) -> T {
+        if c >= self.ss {
+            return (c * self.ss2).clamp01();
+        }
+        if c <= -self.ss || !(self.ss > T::ZERO) {
+            return T::ZERO;
+        }
+        let (k, y) = if c < T::ZERO {
+            (&self.lo, (c + self.ss) / self.ss)
+        } else {
+            (&self.hi, c / self.ss)
+        };
+        (((k[0] * y + k[1]) * y + k[2]) * y + k[3]).clamp01()
+    }
+}
+
 /// A cap light: unit radiance within `sigma` of `axis` (an infinitely distant disc of fixed
 /// angular size, e.g. the sun).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,6 +154,7 @@ pub struct CapLight<T> {
     cos_sigma: T,
     sin_sigma: T,
     hermite: HermiteFillet<T>,
+    hermite_cos: HermiteFilletCos<T>,
 }
 
 impl<T: Real> CapLight<T> {
@@ -172,6 +180,7 @@ impl<T: Real> CapLight<T> {
             cos_sigma: cs,
             sin_sigma: ss,
             hermite: HermiteFillet::new(sigma, cs, ss),
+            hermite_cos: HermiteFilletCos::new(sigma, cs, ss),
         })
     }
 
@@ -213,8 +222,8 @@ impl<T: Real> CapLight<T> {
     pub fn lambert_hermite_cos(&self, n: Vec3<T>) -> T {
         match n.normalize() {
             Some(n) => self
-                .hermite
-                .eval_cos(n.dot(self.axis).clamp(-T::ONE, T::ONE)),
+                .hermite_cos
+                .eval(n.dot(self.axis).clamp(-T::ONE, T::ONE)),
             None => T::ZERO,
         }
     }

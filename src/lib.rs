@@ -28,12 +28,13 @@
 //! ```
 //! use arealight::{CapLight, PhongLobe, Vec3};
 //! // The sun: a cap of half-angle 0.27 degrees, straight up.
-//! let sun = CapLight::<f32>::new(Vec3::new(0.0, 0.0, 1.0), 0.0047).unwrap();
+//! let sun = CapLight::<f32>::new(Vec3::new(0.0, 0.0, 1.0), 0.0047)?;
 //! let n = Vec3::new(0.0, 0.6, 0.8);
 //! let e = sun.lambert(n); // normalized irradiance: cos(w) sin^2(sigma) when fully visible
 //! assert!((e - 0.8 * 0.0047f32.sin().powi(2)).abs() < 1e-9);
-//! let lobe = PhongLobe::new(32).unwrap();
+//! let lobe = PhongLobe::new(32)?;
 //! let _spec = sun.phong(&lobe, n);
+//! # Ok::<(), arealight::Error>(())
 //! ```
 #![no_std]
 #![forbid(unsafe_code)]
