@@ -87,8 +87,22 @@ pub trait Real:
     fn sin(self) -> Self;
     /// Cosine (radians).
     fn cos(self) -> Self;
+    /// `e^self`.
+    fn exp(self) -> Self;
+    /// Natural logarithm (`-inf` for 0 and NaN for negative input, as libm: callers validate
+    /// their domain first).
+    fn ln(self) -> Self;
     /// `true` unless NaN or infinite.
     fn is_finite(self) -> bool;
+    /// `self^y` for `self > 0` as `exp(y ln self)`; 0 for `self <= 0` (and NaN).
+    #[inline(always)]
+    fn powf(self, y: Self) -> Self {
+        if self > Self::ZERO {
+            (y * self.ln()).exp()
+        } else {
+            Self::ZERO
+        }
+    }
 
     /// The larger of two values; a NaN operand loses.
     #[inline(always)]
@@ -185,7 +199,7 @@ compile_error!(
 );
 
 macro_rules! impl_real_float {
-    ($t:ty, $sqrt:path, $atan2:path, $sin:path, $cos:path, $tiny:expr) => {
+    ($t:ty, $sqrt:path, $atan2:path, $sin:path, $cos:path, $exp:path, $ln:path, $tiny:expr) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -240,6 +254,14 @@ macro_rules! impl_real_float {
                 $cos(self)
             }
             #[inline(always)]
+            fn exp(self) -> Self {
+                $exp(self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                $ln(self)
+            }
+            #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
             }
@@ -248,7 +270,16 @@ macro_rules! impl_real_float {
 }
 
 // TINY: about the square root of the smallest normal, so squares of lengths above it are normal.
-impl_real_float!(f64, libm::sqrt, libm::atan2, libm::sin, libm::cos, 1.0e-150);
+impl_real_float!(
+    f64,
+    libm::sqrt,
+    libm::atan2,
+    libm::sin,
+    libm::cos,
+    libm::exp,
+    libm::log,
+    1.0e-150
+);
 impl_real_float!(
     f32,
     libm::sqrtf,
