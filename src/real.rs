@@ -286,5 +286,7 @@ impl_real_float!(
     libm::atan2f,
     libm::sinf,
     libm::cosf,
+    libm::expf,
+    libm::logf,
     1.0e-18
 );
