@@ -20,7 +20,8 @@ pub enum Error {
         /// The capacity `N` of the polygon type.
         capacity: usize,
     },
-    /// A polygon of zero area (collinear or coincident vertices).
+    /// A polygon of zero area (collinear or coincident vertices), or a parallelogram light
+    /// with `eu x ev = 0`.
     ZeroArea,
     /// A polygon whose vertices are not in one plane (to within 1e-6 of its size).
     NotPlanar,
@@ -36,6 +37,36 @@ pub enum Error {
     AlphaOutOfRange,
     /// A Phong exponent too large for the crate (more than [`crate::phong::MAX_EXPONENT`]).
     ExponentOutOfRange,
+    /// A shading point on the segment of a line light (to within the precision of the scalar
+    /// type: closer than `Real::TINY` times the light's distance scale).
+    PointOnSegment,
+    /// A line light's decay exponent k outside {0, 1, 2, 3}.
+    DecayOutOfRange,
+    /// An unnormalized value (a line light's `I ~ distance^-k`) too large for the scalar type.
+    Overflow,
+    /// The named parameter is not > 0 (superellipse sizes and roundness, falloff `d0` and
+    /// zone edges).
+    NotPositive(&'static str),
+    /// The named parameter is negative (falloff `alpha`, the distance `z`).
+    Negative(&'static str),
+    /// Two parameters that must satisfy `low < high` do not (`a < A`, `b < B`,
+    /// `znear < zfar`).
+    NotOrdered {
+        /// The parameter that must be the smaller.
+        low: &'static str,
+        /// The parameter that must be the larger.
+        high: &'static str,
+    },
+    /// A distance falloff whose peak `M` is not > 1.
+    PeakNotAboveOne,
+    /// Two direction parameters that must not be parallel are (a light frame's `up` and
+    /// `direction`).
+    Parallel {
+        /// The first parameter.
+        a: &'static str,
+        /// The second parameter.
+        b: &'static str,
+    },
 }
 
 impl fmt::Display for Error {
@@ -58,6 +89,14 @@ impl fmt::Display for Error {
             Error::SigmaOutOfRange => f.write_str("sigma is outside [0, pi/2]"),
             Error::AlphaOutOfRange => f.write_str("alpha is outside [0, pi]"),
             Error::ExponentOutOfRange => f.write_str("Phong exponent m is too large"),
+            Error::PointOnSegment => f.write_str("shading point is on the segment"),
+            Error::DecayOutOfRange => f.write_str("decay k is outside {0, 1, 2, 3}"),
+            Error::Overflow => f.write_str("the value overflows the scalar type"),
+            Error::NotPositive(p) => write!(f, "{p} is not > 0"),
+            Error::Negative(p) => write!(f, "{p} is negative"),
+            Error::NotOrdered { low, high } => write!(f, "{low} is not < {high}"),
+            Error::PeakNotAboveOne => f.write_str("falloff peak M is not > 1"),
+            Error::Parallel { a, b } => write!(f, "{a} is parallel to {b}"),
         }
     }
 }

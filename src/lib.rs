@@ -20,10 +20,18 @@
 //! | `cap_lambert`, `cap_lambert_hermite` | [`CapLight::lambert`], [`CapLight::lambert_hermite`] | Snyder eq. 6, 2.2 |
 //! | `sphere_lambert`, `sphere_lambert_hermite` | [`SphereLight::lambert`], [`SphereLight::lambert_hermite`] | Snyder eq. 6, 7 |
 //! | `polygon_lambert` | [`PolygonLight::lambert`] | Snyder eq. 8, Iwanicki |
+//! | `line_lambert` | [`LineLight::lambert`] with a [`Decay`] | Picott eq. 3, appendix A |
 //! | `phong_hemi_const`, `phong_hemi_cos` | [`HemisphereLight::phong_const`], [`HemisphereLight::phong_cos`] | Snyder eq. 14, 15 |
 //! | `phong_cap`, `phong_sphere` | [`CapLight::phong`], [`SphereLight::phong`] | Snyder eq. 24 |
 //! | `phong_polygon` | [`PolygonLight::phong`] | Snyder eq. 25, Arvo 5.1 |
+//! | `line_phong_peak`, `rect_phong_peak` | [`LineLight::phong_peak`], [`ParallelogramLight::phong_peak`] (the peak of the lobe, not its integral) | Picott eq. 7, 3.2 |
+//! | `axial_moment`, `double_axis_moment` | [`PolygonLight::axial_moment`], [`PolygonLight::double_axis_moment`] | Arvo eq. 12, 14, 5.3 |
+//! | `directional_luminaire` | [`PolygonLight::directional_luminaire`] | Arvo 6.1 |
+//! | `glossy_reflection`, `glossy_transmission` | [`PolygonLight::glossy_reflection`], [`PolygonLight::glossy_transmission`] | Arvo 6.2, 6.3 |
+//! | `lune_normalization` | [`lune_normalization`] | Arvo 6.4 |
 //! | `sh9_irradiance`, `sh9_disc_irradiance` | [`Sh9::prepare`] then [`Sh9Irradiance::irradiance`]; [`Sh9::disc`] | June eq. 20.24-20.33 |
+//! | `superellipse_shape` | [`Superellipse::shape`] (a factor: see [`Uberlight`]) | June eq. 20.34-20.42 (Barzel) |
+//! | `distance_falloff` | [`DistanceFalloff::falloff`] (a factor: see [`Uberlight`]) | June eq. 20.46, 20.47 and listing (Barzel) |
 //!
 //! ```
 //! use arealight::{CapLight, PhongLobe, Vec3};
@@ -47,20 +55,26 @@
 pub mod cap;
 pub mod error;
 pub mod hemisphere;
+pub mod line;
+pub mod moments;
 pub mod phong;
 pub mod polygon;
 pub mod real;
 pub mod sh9;
+pub mod shaping;
 pub mod sine_power;
 pub mod vec3;
 
 pub use cap::{CapLight, SphereLight};
 pub use error::Error;
 pub use hemisphere::{HemisphereLight, OvercastSky, SkyGround};
+pub use line::{Decay, LineLight, ParallelogramLight};
+pub use moments::{lune_normalization, try_lune_normalization};
 pub use phong::PhongLobe;
 pub use polygon::PolygonLight;
 pub use real::{Fast32, Real};
 pub use sh9::{Environment, Sh9, Sh9Irradiance};
+pub use shaping::{DistanceFalloff, LightFrame, Superellipse, Uberlight};
 pub use vec3::{Rgb, Vec3};
 
 /// The README's examples, compiled and run as doc tests.

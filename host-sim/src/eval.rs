@@ -72,22 +72,21 @@ pub const SUPPORTED: &[&str] = &[
     "phong_polygon",
     "sh9_irradiance",
     "sh9_disc_irradiance",
-];
-
-/// The models the protocol defines that are not implemented yet.
-pub const NOT_YET: &[&str] = &[
-    "line_lambert",
-    "line_phong_peak",
-    "rect_phong_peak",
+    "superellipse_shape",
+    "distance_falloff",
     "axial_moment",
     "double_axis_moment",
     "directional_luminaire",
     "glossy_reflection",
     "glossy_transmission",
     "lune_normalization",
-    "superellipse_shape",
-    "distance_falloff",
+    "line_lambert",
+    "line_phong_peak",
+    "rect_phong_peak",
 ];
+
+/// The models the protocol defines that are not implemented yet.
+pub const NOT_YET: &[&str] = &[];
 
 /// The answer of a model: a scalar or an RGB triple, already converted to f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -378,6 +377,38 @@ pub fn eval_model<T: Real>(model: &str, p: &Params) -> EvalResult<Answer> {
             let lobe = PhongLobe::new(m)?;
             scalar(poly.try_phong(&lobe, pt, r)?)
         }
+        "axial_moment" => {
+            let (pt, verts, w) = (p.vec3::<T>("p")?, p.verts::<T>("verts")?, p.vec3::<T>("w")?);
+            let m = p.uint("m")?;
+            let poly = PolygonLight::<T, MAX_VERTICES>::new(&verts)?;
+            scalar(poly.try_axial_moment(pt, w, m)?)
+        }
+        "double_axis_moment" => {
+            let (pt, verts) = (p.vec3::<T>("p")?, p.verts::<T>("verts")?);
+            let (w, v, m) = (p.vec3::<T>("w")?, p.vec3::<T>("v")?, p.uint("m")?);
+            let poly = PolygonLight::<T, MAX_VERTICES>::new(&verts)?;
+            scalar(poly.try_double_axis_moment(pt, w, v, m)?)
+        }
+        "directional_luminaire" => {
+            let (pt, n, verts) = (p.vec3::<T>("p")?, p.vec3::<T>("n")?, p.verts::<T>("verts")?);
+            let (axis, m) = (p.vec3::<T>("axis")?, p.uint("m")?);
+            let poly = PolygonLight::<T, MAX_VERTICES>::new(&verts)?;
+            scalar(poly.try_directional_luminaire(pt, n, axis, m)?)
+        }
+        "glossy_reflection" | "glossy_transmission" => {
+            let (pt, n, e) = (p.vec3::<T>("p")?, p.vec3::<T>("n")?, p.vec3::<T>("e")?);
+            let (verts, m) = (p.verts::<T>("verts")?, p.uint("m")?);
+            let poly = PolygonLight::<T, MAX_VERTICES>::new(&verts)?;
+            scalar(if model == "glossy_reflection" {
+                poly.try_glossy_reflection(pt, n, e, m)?
+            } else {
+                poly.try_glossy_transmission(pt, n, e, m)?
+            })
+        }
+        "lune_normalization" => {
+            let (w, v, m) = (p.vec3::<T>("w")?, p.vec3::<T>("v")?, p.uint("m")?);
+            scalar(arealight::try_lune_normalization(w, v, m)?)
+        }
         "sh9_irradiance" => {
             let (n, coeffs) = (p.vec3::<T>("n")?, p.coeffs::<T>("coeffs")?);
             let env = Sh9::new(coeffs)?.prepare();
@@ -391,6 +422,66 @@ pub fn eval_model<T: Real>(model: &str, p: &Params) -> EvalResult<Answer> {
             );
             let env = Sh9::disc(axis, alpha, Rgb::splat(T::ONE))?.prepare();
             scalar(env.irradiance(check_dir(n, "n")?).r)
+        }
+        "superellipse_shape" => {
+            let pos = p.vec3::<T>("pos")?;
+            let s = [
+                p.f64("a")?,
+                p.f64("b")?,
+                p.f64("A")?,
+                p.f64("B")?,
+                p.f64("d")?,
+            ];
+            // Validated in f64 first, so every backend refuses the same parameters.
+            arealight::Superellipse::<f64>::new(s[0], s[1], s[2], s[3], s[4])?;
+            let s = s.map(T::from_f64);
+            let shape = arealight::Superellipse::new(s[0], s[1], s[2], s[3], s[4])?;
+            scalar(shape.try_shape(pos)?)
+        }
+        "distance_falloff" => {
+            let z = p.f64("z")?;
+            let f = [
+                p.f64("M")?,
+                p.f64("d0")?,
+                p.f64("alpha")?,
+                p.f64("znear")?,
+                p.f64("zfar")?,
+                p.f64("near_edge")?,
+                p.f64("far_edge")?,
+            ];
+            // Validated in f64 first (z too: a tiny negative z would round to -0 in f32), so
+            // every backend refuses the same inputs.
+            arealight::DistanceFalloff::<f64>::new(f[0], f[1], f[2], f[3], f[4], f[5], f[6])?
+                .try_falloff(z)?;
+            let f = f.map(T::from_f64);
+            let light = arealight::DistanceFalloff::new(f[0], f[1], f[2], f[3], f[4], f[5], f[6])?;
+            scalar(light.try_falloff(T::from_f64(z))?)
+        }
+        "line_lambert" => {
+            let (pt, n) = (p.vec3::<T>("p")?, p.vec3::<T>("n")?);
+            let (a, b, k) = (p.vec3::<T>("a")?, p.vec3::<T>("b")?, p.uint("k")?);
+            let light = arealight::LineLight::new(a, b)?;
+            scalar(light.try_lambert(pt, n, arealight::Decay::new(k)?)?)
+        }
+        "line_phong_peak" => {
+            let (pt, r) = (p.vec3::<T>("p")?, p.vec3::<T>("r")?);
+            let (a, b, m) = (p.vec3::<T>("a")?, p.vec3::<T>("b")?, p.uint("m")?);
+            let light = arealight::LineLight::new(a, b)?;
+            let lobe = PhongLobe::new(m)?;
+            scalar(light.try_phong_peak(&lobe, pt, r)?)
+        }
+        "rect_phong_peak" => {
+            let (pt, r) = (p.vec3::<T>("p")?, p.vec3::<T>("r")?);
+            let (origin, eu, ev) = (
+                p.vec3::<T>("origin")?,
+                p.vec3::<T>("eu")?,
+                p.vec3::<T>("ev")?,
+            );
+            let m = p.uint("m")?;
+            // The constructor validates in f64 on every backend.
+            let light = arealight::ParallelogramLight::new(origin, eu, ev)?;
+            let lobe = PhongLobe::new(m)?;
+            scalar(light.try_phong_peak(&lobe, pt, r)?)
         }
         m if NOT_YET.contains(&m) => {
             return Err(EvalError(format!(

@@ -87,6 +87,28 @@ fn valid_cases() -> Vec<Value> {
         json!({"id": "sh9_irradiance", "model": "sh9_irradiance", "n": [0.2, 0.3, 1], "coeffs": GRACE}),
         json!({"id": "sh9_disc_irradiance", "model": "sh9_disc_irradiance", "n": [0, 0.2, 1],
                "axis": [0, 0, 1], "alpha": 0.6}),
+        json!({"id": "superellipse_shape", "model": "superellipse_shape", "pos": [0.05, 0.3, 1],
+               "a": 0.2, "b": 0.3, "A": 0.3, "B": 0.4, "d": 0.8}),
+        json!({"id": "distance_falloff", "model": "distance_falloff", "z": 0.7, "M": 2, "d0": 1,
+               "alpha": 1, "znear": 1, "zfar": 2, "near_edge": 0.4, "far_edge": 0.8}),
+        json!({"id": "axial_moment", "model": "axial_moment", "p": [0, 0, 0], "verts": square(),
+               "w": [0, 0.2, 1], "m": 3}),
+        json!({"id": "double_axis_moment", "model": "double_axis_moment", "p": [0, 0, 0],
+               "verts": square(), "w": [0, 0.2, 1], "v": [0.1, 0, 1], "m": 2}),
+        json!({"id": "directional_luminaire", "model": "directional_luminaire", "p": [0, 0, 0],
+               "n": [0, 0.3, 1], "verts": square(), "axis": [0, 0, -1], "m": 4}),
+        json!({"id": "glossy_reflection", "model": "glossy_reflection", "p": [0, 0, 0], "n": [0, 0, 1],
+               "e": [0, 0.3, 1], "verts": square(), "m": 8}),
+        json!({"id": "glossy_transmission", "model": "glossy_transmission", "p": [0, 0, 0],
+               "n": [0, 0, -1], "e": [0, 0.2, -1], "verts": square(), "m": 8}),
+        json!({"id": "lune_normalization", "model": "lune_normalization", "w": [0, 0, 1],
+               "v": [0, 1, 1], "m": 5}),
+        json!({"id": "line_lambert", "model": "line_lambert", "p": [0, 0, 0], "n": [0, 0.3, 1],
+               "a": [-1, 0.5, 2], "b": [1.5, -0.2, 2.5], "k": 2}),
+        json!({"id": "line_phong_peak", "model": "line_phong_peak", "p": [0, 0, 0], "r": [0.2, 0.1, 1],
+               "a": [-1, 0.5, 2], "b": [1.5, -0.2, 2.5], "m": 16}),
+        json!({"id": "rect_phong_peak", "model": "rect_phong_peak", "p": [0, 0, 0], "r": [0.6, 0.1, 1],
+               "origin": [-1, -1, 2], "eu": [2, 0, 0], "ev": [0, 2, 0], "m": 16}),
     ]
 }
 
@@ -327,6 +349,61 @@ fn invalid_inputs_get_precise_errors() {
         json!({"id": 17, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1], "verts": ring}),
         "more than 64 vertices",
     ));
+    // Arvo's moments: one invalid input each.
+    cases.extend([
+        (
+            json!({"id": 101, "model": "axial_moment", "p": [0, 0, 0], "verts": square(),
+                   "w": [0, 0, 0], "m": 3}),
+            "w has zero length",
+        ),
+        (
+            json!({"id": 102, "model": "double_axis_moment", "p": [0, 0, 0], "verts": square(),
+                   "w": [0, 0, 1], "v": [0, 0, 1], "m": 2_000_000}),
+            "m is too large",
+        ),
+        (
+            json!({"id": 103, "model": "directional_luminaire", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "verts": [[0, 0, 1], [1, 0, 1]], "axis": [0, 0, -1], "m": 1}),
+            "fewer than 3 vertices",
+        ),
+        (
+            json!({"id": 104, "model": "glossy_reflection", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "e": [0, 0, 0], "verts": square(), "m": 8}),
+            "e has zero length",
+        ),
+        (
+            json!({"id": 105, "model": "glossy_transmission", "p": [0, 0, 0], "n": [0, 0, 0],
+                   "e": [0, 0, 1], "verts": square(), "m": 8}),
+            "n has zero length",
+        ),
+        (
+            json!({"id": 106, "model": "lune_normalization", "w": [0, 0, 1], "v": [0, 0, 0], "m": 5}),
+            "v has zero length",
+        ),
+    ]);
+    // Line and parallelogram lights: one invalid input each (and an invalid decay).
+    cases.extend([
+        (
+            json!({"id": 201, "model": "line_lambert", "p": [0.25, 0, 2], "n": [0, 0, 1],
+                   "a": [-1, 0, 2], "b": [1, 0, 2], "k": 2}),
+            "shading point is on the segment",
+        ),
+        (
+            json!({"id": 202, "model": "line_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
+                   "a": [-1, 0, 2], "b": [1, 0, 2], "k": 4}),
+            "decay k is outside {0, 1, 2, 3}",
+        ),
+        (
+            json!({"id": 203, "model": "line_phong_peak", "p": [0, 0, 0], "r": [0, 0, 1],
+                   "a": [1, 0, 2], "b": [1, 0, 2], "m": 8}),
+            "segment has zero length",
+        ),
+        (
+            json!({"id": 204, "model": "rect_phong_peak", "p": [0, 0, 0], "r": [0, 0, 1],
+                   "origin": [-1, -1, 2], "eu": [2, 0, 0], "ev": [-3, 0, 0], "m": 8}),
+            "zero area",
+        ),
+    ]);
     let input: Vec<Value> = cases.iter().map(|(l, _)| l.clone()).collect();
     for backend in ["f64", "f32", "f32-fast"] {
         let out = run(backend, &input);
@@ -381,19 +458,7 @@ fn missing_parameter_echoes_the_id() {
     assert_eq!(error_of(&out[2]), "missing parameter: m");
 }
 
-const NOT_YET: [&str; 11] = [
-    "line_lambert",
-    "line_phong_peak",
-    "rect_phong_peak",
-    "axial_moment",
-    "double_axis_moment",
-    "directional_luminaire",
-    "glossy_reflection",
-    "glossy_transmission",
-    "lune_normalization",
-    "superellipse_shape",
-    "distance_falloff",
-];
+const NOT_YET: [&str; 0] = [];
 
 #[test]
 fn unsupported_and_unknown_models() {
@@ -492,4 +557,137 @@ fn closed_stdout_does_not_panic() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.code(), Some(0), "{stderr}");
+}
+
+/// June's figure 20-17 shape with `pos`, and one parameter replaced.
+fn shape_line(id: u32, pos: Value, key: &str, val: Value) -> Value {
+    let mut l = json!({"id": id, "model": "superellipse_shape", "pos": pos,
+                       "a": 0.2, "b": 0.3, "A": 0.3, "B": 0.4, "d": 0.8});
+    l[key] = val;
+    l
+}
+
+/// June's listing falloff (zones 0.6..1 and 2..2.8) at `z`, and one parameter replaced.
+fn falloff_line(id: u32, z: Value, key: &str, val: Value) -> Value {
+    let mut l = json!({"id": id, "model": "distance_falloff", "z": z, "M": 2, "d0": 1, "alpha": 1,
+                       "znear": 1, "zfar": 2, "near_edge": 0.4, "far_edge": 0.8});
+    l[key] = val;
+    l
+}
+
+#[test]
+fn shaping_models_validate() {
+    let on_axis = json!([0, 0, 1]);
+    let cases = [
+        (
+            shape_line(1, on_axis.clone(), "a", json!(0)),
+            "a is not > 0",
+        ),
+        (
+            shape_line(2, on_axis.clone(), "d", json!(-1)),
+            "d is not > 0",
+        ),
+        (
+            shape_line(3, on_axis.clone(), "a", json!(0.3)),
+            "a is not < A",
+        ),
+        (
+            shape_line(4, on_axis.clone(), "b", json!(0.5)),
+            "b is not < B",
+        ),
+        (
+            shape_line(5, on_axis.clone(), "A", json!("Infinity")),
+            "A is not finite",
+        ),
+        (
+            shape_line(6, json!([0, "NaN", 1]), "d", json!(0.8)),
+            "pos is not finite",
+        ),
+        (
+            shape_line(7, on_axis.clone(), "B", json!(-0.4)),
+            "B is not > 0",
+        ),
+        (
+            falloff_line(8, json!(1.5), "M", json!(1)),
+            "falloff peak M is not > 1",
+        ),
+        (falloff_line(9, json!(1.5), "d0", json!(0)), "d0 is not > 0"),
+        (
+            falloff_line(10, json!(1.5), "alpha", json!(-1)),
+            "alpha is negative",
+        ),
+        (
+            falloff_line(11, json!(1.5), "near_edge", json!(0)),
+            "near_edge is not > 0",
+        ),
+        (
+            falloff_line(12, json!(1.5), "far_edge", json!(-1)),
+            "far_edge is not > 0",
+        ),
+        (
+            falloff_line(13, json!(1.5), "znear", json!(2)),
+            "znear is not < zfar",
+        ),
+        (falloff_line(14, json!(-1), "M", json!(2)), "z is negative"),
+        // Rounds to -0 in f32: refused on every backend all the same.
+        (
+            falloff_line(15, json!(-1e-50), "M", json!(2)),
+            "z is negative",
+        ),
+        (
+            falloff_line(16, json!("NaN"), "M", json!(2)),
+            "z is not finite",
+        ),
+        (
+            falloff_line(17, json!(1.5), "d0", json!("-Infinity")),
+            "d0 is not finite",
+        ),
+    ];
+    let input: Vec<Value> = cases.iter().map(|(l, _)| l.clone()).collect();
+    for backend in ["f64", "f32", "f32-fast"] {
+        let out = run(backend, &input);
+        for ((line, want), got) in cases.iter().zip(&out) {
+            assert_eq!(got["id"], line["id"]);
+            assert!(
+                error_of(got).contains(want),
+                "{backend}: {got} should say {want:?}"
+            );
+        }
+    }
+    let mut missing = shape_line(18, on_axis.clone(), "d", json!(1));
+    missing.as_object_mut().unwrap().remove("d");
+    assert_eq!(error_of(&one("f64", missing)), "missing parameter: d");
+
+    // Values the spec pins down exactly.
+    let open = |id: u32, z: f64| {
+        let mut l = falloff_line(id, json!(z), "znear", json!(0));
+        l["zfar"] = json!(10);
+        l
+    };
+    let lines = [
+        (shape_line(20, on_axis.clone(), "d", json!(0.8)), 1.0), // X = Y = 0
+        (shape_line(21, json!([0.1, 0.1, 0]), "d", json!(0.8)), 0.0), // z <= 0
+        (shape_line(22, json!([0.1, 0.1, -1]), "d", json!(0.8)), 0.0),
+        (shape_line(23, json!([1, 0, 1]), "d", json!(0.8)), 0.0), // outside A
+        (shape_line(24, json!([0.1, 0.1, 1]), "d", json!(1)), 1.0), // inside a, b
+        (open(25, 1.0), 1.0),                                     // z = d0
+        (open(26, 0.0), 2.0),                                     // z = 0: the peak M
+        (open(27, 2.0), 0.5),                                     // (d0/z)^alpha
+        (falloff_line(28, json!(0.5), "M", json!(2)), 0.0),       // before the cut-on
+        (falloff_line(29, json!(3), "M", json!(2)), 0.0),         // after the cut-off
+    ];
+    let input: Vec<Value> = lines.iter().map(|(l, _)| l.clone()).collect();
+    for backend in ["f64", "f32", "f32-fast"] {
+        let out = run(backend, &input);
+        for ((line, want), got) in lines.iter().zip(&out) {
+            let x = got["value"]
+                .as_f64()
+                .unwrap_or_else(|| panic!("{backend}: {got}"));
+            assert!(
+                (x - want).abs() <= 1e-6,
+                "{backend}: {} gave {x}, want {want}",
+                line["id"]
+            );
+        }
+    }
 }
