@@ -23,49 +23,10 @@
 )]
 
 use crate::common::quadrature::{
-    add, angle, any_perp, cross, dot, integrate_smooth_ends, newell, norm, normalize, scale, sub,
-    Quad, V3,
+    add, angle, any_perp, cross, dot, integrate_smooth_ends, newell, norm, normalize,
+    point_in_polygon, scale, sub, Arc, Quad, V3,
 };
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
-
-/// The great circle of an edge (or the full circle of `v`, `x = TAU`).
-struct GArc {
-    a: V3,
-    c: V3,
-    x: f64,
-    big_r: f64,
-    t0: f64,
-    beta: f64,
-}
-
-fn garc(a: V3, g: V3, x: f64, k: V3) -> GArc {
-    let c = cross(g, a);
-    let (ak, ck) = (dot(a, k), dot(c, k));
-    let big_r = ak.hypot(ck);
-    GArc {
-        a,
-        c,
-        x,
-        big_r,
-        t0: ck.atan2(ak),
-        beta: dot(k, g).abs().atan2(big_r),
-    }
-}
-
-fn point_in_polygon(pt: [f64; 2], poly: &[[f64; 2]]) -> bool {
-    let mut inside = false;
-    let n = poly.len();
-    for i in 0..n {
-        let (a, b) = (poly[i], poly[(i + 1) % n]);
-        if (a[1] > pt[1]) != (b[1] > pt[1]) {
-            let x = a[0] + (pt[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-            if pt[0] < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
 
 /// `integral over R of (w.u)^m f2(u) du`, `R` the projection of `verts` from `p` (or the whole
 /// sphere for `None`), intersected with `{u.w >= 0}` if `clip_w` and `{u.v >= 0}` if `clip_v`;
@@ -123,7 +84,7 @@ pub fn moment_by_circles(
             }
             let g = normalize(gr);
             let x = angle(a, normalize(br));
-            let arc = garc(a, g, x, k);
+            let arc = Arc::new(a, g, x, k);
             cuts.push(arc.beta);
             cuts.push(PI - arc.beta);
             arcs.push(arc);
@@ -131,7 +92,7 @@ pub fn moment_by_circles(
     }
     if clip_v {
         let a = any_perp(v);
-        let arc = garc(a, v, TAU, k);
+        let arc = Arc::new(a, v, TAU, k);
         cuts.push(arc.beta);
         cuts.push(PI - arc.beta);
         arcs.push(arc);

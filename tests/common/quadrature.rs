@@ -696,7 +696,7 @@ pub fn polygon_integral<F: Fn(V3) -> f64>(
 }
 
 /// Crossing-number test of a 2D point against a 2D polygon.
-fn point_in_polygon(pt: [f64; 2], poly: &[[f64; 2]]) -> bool {
+pub fn point_in_polygon(pt: [f64; 2], poly: &[[f64; 2]]) -> bool {
     let mut inside = false;
     let n = poly.len();
     for i in 0..n {
@@ -713,15 +713,32 @@ fn point_in_polygon(pt: [f64; 2], poly: &[[f64; 2]]) -> bool {
 
 /// One edge of a polygon seen from p: its great-circle arc `u(t) = cos(t) a + sin(t) c`,
 /// `t` in [0, x], and where it stands relative to the weight axis k.
-struct Arc {
-    a: V3,
-    c: V3,
-    x: f64,
+pub struct Arc {
+    pub a: V3,
+    pub c: V3,
+    pub x: f64,
     /// `|u.k|` is at most `big_r` on the great circle, reached at `t = t0`.
-    big_r: f64,
-    t0: f64,
+    pub big_r: f64,
+    pub t0: f64,
     /// Angle between k and the great circle's plane (`cos beta = big_r`).
-    beta: f64,
+    pub beta: f64,
+}
+
+impl Arc {
+    /// The arc from unit `a` of length `x` on the great circle of unit normal `g`, seen about `k`.
+    pub fn new(a: V3, g: V3, x: f64, k: V3) -> Arc {
+        let c = cross(g, a);
+        let (ak, ck) = (dot(a, k), dot(c, k));
+        let big_r = ak.hypot(ck);
+        Arc {
+            a,
+            c,
+            x,
+            big_r,
+            t0: ck.atan2(ak),
+            beta: dot(k, g).abs().atan2(big_r),
+        }
+    }
 }
 
 /// `integral over the projection of the planar polygon, clipped to u.k >= 0, of w(u.k) du`,
@@ -780,21 +797,9 @@ pub fn polygon_by_circles<W: Fn(f64) -> f64>(
         if norm(gr) == 0.0 {
             continue; // p on the edge's line: the arc has no width.
         }
-        let g = normalize(gr);
-        let c = cross(g, a);
-        let x = angle(a, bh);
-        let (ak, ck) = (dot(a, k), dot(c, k));
-        let big_r = ak.hypot(ck);
-        let beta = dot(k, g).abs().atan2(big_r);
-        cuts.push(beta);
-        arcs.push(Arc {
-            a,
-            c,
-            x,
-            big_r,
-            t0: ck.atan2(ak),
-            beta,
-        });
+        let arc = Arc::new(a, normalize(gr), angle(a, bh), k);
+        cuts.push(arc.beta);
+        arcs.push(arc);
     }
     let inside = |u: V3| {
         let un = dot(u, nu);
