@@ -192,6 +192,7 @@ impl<T: Real> CapLight<T> {
     pub fn sigma(&self) -> T {
         self.sigma
     }
+    #[cfg(feature = "phong")]
     pub(crate) fn cos_sin_sigma(&self) -> (T, T) {
         (self.cos_sigma, self.sin_sigma)
     }
@@ -235,7 +236,7 @@ impl<T: Real> CapLight<T> {
     /// Fallback: 0 for a zero or non-finite `n`.
     #[inline]
     pub fn lambert_hermite(&self, n: Vec3<T>) -> T {
-        match crate::hemisphere::angle_to(n, self.axis) {
+        match crate::vec3::angle_to(n, self.axis) {
             Some((c, _, w)) => self.hermite.eval(c, w),
             None => T::ZERO,
         }
@@ -335,7 +336,7 @@ impl<T: Real> SphereLight<T> {
         let cap = self.cap_at(p)?;
         let n = n.try_normalize("n")?;
         let sigma = cap.ss.atan2(cap.cs);
-        let (c, _, w) = crate::hemisphere::angle_to(n, cap.axis).ok_or(Error::ZeroLength("n"))?;
+        let (c, _, w) = crate::vec3::angle_to(n, cap.axis).ok_or(Error::ZeroLength("n"))?;
         Ok(HermiteFillet::new(sigma, cap.cs, cap.ss).eval(c, w))
     }
 

@@ -35,7 +35,7 @@ pub enum Error {
     SigmaOutOfRange,
     /// A disc half-angle alpha outside [0, pi].
     AlphaOutOfRange,
-    /// A Phong exponent too large for the crate (more than [`crate::phong::MAX_EXPONENT`]).
+    /// A Phong exponent too large for the crate (more than [`crate::lobe::MAX_EXPONENT`]).
     ExponentOutOfRange,
     /// A shading point on the segment of a line light (to within the precision of the scalar
     /// type: closer than `Real::TINY` times the light's distance scale).

@@ -13,34 +13,8 @@
 //! `w` is computed as `atan2(|n x axis|, n.axis)`, accurate at both ends of [0, pi], where
 //! `acos(n.axis)` loses half its digits.
 
+use crate::vec3::angle_to;
 use crate::{Error, Real, Rgb, Vec3};
-
-/// `(cos w, sin w)` of the angle `w` between two unit vectors, made consistent
-/// (`c^2 + s^2 = 1` to rounding): the smaller of the two comes from the dot or cross product
-/// (absolute error of a few ULPs, fine for a small value) and the larger from
-/// `sqrt((1 - x)(1 + x))` of it, so it carries only a relative error of a few ULPs. Computing
-/// both directly would leave the larger one off by an absolute ULP, which a power `s^m` or
-/// `c^m` of a Phong recurrence multiplies by `m`.
-#[inline]
-pub(crate) fn cos_sin_between<T: Real>(d: Vec3<T>, axis: Vec3<T>) -> (T, T) {
-    let c = d.dot(axis).clamp(-T::ONE, T::ONE);
-    let s = d.cross(axis).length().min(T::ONE);
-    if c.abs() <= s {
-        (c, ((T::ONE - c) * (T::ONE + c)).sqrt())
-    } else {
-        let mag = ((T::ONE - s) * (T::ONE + s)).sqrt();
-        (if c < T::ZERO { -mag } else { mag }, s)
-    }
-}
-
-/// `(cos w, sin w, w)` between a per-sample direction `d` (any length) and a unit `axis`, or
-/// `None` when `d` is zero or not finite. Cost: one normalization, a cross product, 2 sqrt, 1 atan2.
-#[inline]
-pub(crate) fn angle_to<T: Real>(d: Vec3<T>, axis: Vec3<T>) -> Option<(T, T, T)> {
-    let d = d.normalize()?;
-    let (c, s) = cos_sin_between(d, axis);
-    Some((c, s, s.atan2(c)))
-}
 
 /// An infinite hemisphere light around `axis` (the zenith) of unit radiance, constant or
 /// cosine weighted.

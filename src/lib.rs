@@ -52,28 +52,44 @@
 // every validation and fallback here needs.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+#[cfg(feature = "cap")]
 pub mod cap;
 pub mod error;
+#[cfg(feature = "hemisphere")]
 pub mod hemisphere;
+#[cfg(feature = "line")]
 pub mod line;
+pub mod lobe;
+#[cfg(feature = "moments")]
 pub mod moments;
+#[cfg(feature = "phong")]
 pub mod phong;
+#[cfg(feature = "polygon")]
 pub mod polygon;
 pub mod real;
+#[cfg(feature = "sh9")]
 pub mod sh9;
+#[cfg(feature = "shaping")]
 pub mod shaping;
 pub mod sine_power;
 pub mod vec3;
 
+#[cfg(feature = "cap")]
 pub use cap::{CapLight, SphereLight};
 pub use error::Error;
+#[cfg(feature = "hemisphere")]
 pub use hemisphere::{HemisphereLight, OvercastSky, SkyGround};
+#[cfg(feature = "line")]
 pub use line::{Decay, LineLight, ParallelogramLight};
+pub use lobe::PhongLobe;
+#[cfg(feature = "moments")]
 pub use moments::{lune_normalization, try_lune_normalization};
-pub use phong::PhongLobe;
+#[cfg(feature = "polygon")]
 pub use polygon::PolygonLight;
 pub use real::{Fast32, Real};
+#[cfg(feature = "sh9")]
 pub use sh9::{Environment, Sh9, Sh9Irradiance};
+#[cfg(feature = "shaping")]
 pub use shaping::{DistanceFalloff, LightFrame, Superellipse, Uberlight};
 pub use vec3::{Rgb, Vec3};
 

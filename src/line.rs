@@ -87,7 +87,7 @@
 //! `w^2 > 1/2`, where `1 - w^2` would cancel) and returns `exp(m ln1p(-v))`, whose error does
 //! not grow with `m`.
 //!
-//! The exponent is passed as a [`PhongLobe`] (validated once, `m <= phong::MAX_EXPONENT`; the
+//! The exponent is passed as a [`PhongLobe`] (validated once, `m <= lobe::MAX_EXPONENT`; the
 //! exponent asked for, [`PhongLobe::exponent`], is used even for an odd-only lobe: the peak is
 //! exact and cheap for every `m`). `m = 0` gives 1 if some point of the light is in front of the
 //! plane normal to `r`, else 0 (the spec's `((x)+)^0`).
@@ -121,7 +121,7 @@
 //! parallelograms), 7e-10 at m = 2^16 and 2^20 (the brute force's own `cos^m`). f32 against f64
 //! 5e-7 where well conditioned, Fast32 7.4e-6, for m up to 1000.
 
-use crate::phong::PhongLobe;
+use crate::lobe::PhongLobe;
 use crate::{Error, Real, Vec3};
 
 /// Picott's decay exponent `k` of `[line_lambert]`: the integrand is `cos / |L|^k`.

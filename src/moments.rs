@@ -116,9 +116,9 @@
 //! Planes nearly opposite (`w.v` near -1, a thin lune) make the solid-angle term of odd `m`
 //! ill-conditioned (a ratio of two quantities of the lune's width): not yet measured.
 
-use crate::hemisphere::cos_sin_between;
-use crate::phong::MAX_EXPONENT;
+use crate::lobe::MAX_EXPONENT;
 use crate::polygon::{for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight};
+use crate::vec3::cos_sin_between;
 use crate::{Error, Real, Vec3};
 
 /// Which great circle an arc of a clipped ring lies on.

@@ -55,72 +55,23 @@
 //! `c^2 + s^2 = 1`; `f = 1 - (r.G)^2`), which cut the m = 255 error three-fold. The README
 //! tabulates the measured errors.
 
+#[cfg(feature = "cap")]
 use crate::cap::{CapLight, SphereLight};
-use crate::hemisphere::{cos_sin_between, HemisphereLight};
+#[cfg(feature = "hemisphere")]
+use crate::hemisphere::HemisphereLight;
+pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
+#[cfg(feature = "polygon")]
 use crate::polygon::{for_each_clipped_edge, ApexFan, PolygonLight};
-use crate::sine_power::{sine_power_integral, sine_power_integral_pi};
-use crate::{Error, Real, Vec3};
+#[cfg(feature = "hemisphere")]
+use crate::sine_power::sine_power_integral;
+#[cfg(any(feature = "cap", feature = "hemisphere"))]
+use crate::vec3::cos_sin_between;
+#[cfg(any(feature = "cap", feature = "polygon"))]
+use crate::Error;
+#[cfg(any(feature = "cap", feature = "hemisphere", feature = "polygon"))]
+use crate::{Real, Vec3};
 
-/// The largest Phong exponent accepted: every model's cost is O(m), so this bounds the time a
-/// sample can take (about a million multiply-adds).
-pub const MAX_EXPONENT: u32 = 1 << 20;
-
-/// A Phong lobe: the exponent and its per-material constants `S(m, pi)`, `S(m + 1, pi)`,
-/// computed once (in f64, then rounded to `T`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PhongLobe<T> {
-    requested: u32,
-    m: u32,
-    s_m_pi: T,
-    s_m1_pi: T,
-    hemi_cos_scale: T,
-}
-
-impl<T: Real> PhongLobe<T> {
-    /// The exact lobe of exponent `m` (odd or even).
-    ///
-    /// # Errors
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
-    pub fn new(m: u32) -> Result<Self, Error> {
-        Self::build(m, m)
-    }
-
-    /// Snyder's odd-only fast path: an even `m` is evaluated as `m + 1` (no solid angle, one
-    /// arc tangent fewer per cap sample and one fan term fewer per polygon edge). An
-    /// approximation for even `m`; exact for odd `m`.
-    ///
-    /// # Errors
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
-    pub fn odd_only(m: u32) -> Result<Self, Error> {
-        Self::build(m, m | 1)
-    }
-
-    fn build(requested: u32, m: u32) -> Result<Self, Error> {
-        if requested > MAX_EXPONENT {
-            return Err(Error::ExponentOutOfRange);
-        }
-        let s_m = sine_power_integral_pi::<f64>(m);
-        let s_m1 = sine_power_integral_pi::<f64>(m + 1);
-        let mf = m as f64;
-        Ok(PhongLobe {
-            requested,
-            m,
-            s_m_pi: T::from_f64(s_m),
-            s_m1_pi: T::from_f64(s_m1),
-            hemi_cos_scale: T::from_f64((mf + 1.0) / ((mf + 2.0) * s_m1)),
-        })
-    }
-
-    /// The exponent asked for.
-    pub fn exponent(&self) -> u32 {
-        self.requested
-    }
-    /// The exponent evaluated (differs only for [`PhongLobe::odd_only`] with an even `m`).
-    pub fn evaluated_exponent(&self) -> u32 {
-        self.m
-    }
-}
-
+#[cfg(feature = "hemisphere")]
 impl<T: Real> HemisphereLight<T> {
     /// `[phong_hemi_const]`: Phong illumination from the constant-weighted hemisphere (Snyder
     /// eq. 14), normalized (in [0, 1]); `r` is the reflection direction (any length).
@@ -172,6 +123,7 @@ impl<T: Real> HemisphereLight<T> {
 
 /// Snyder's eq. 24 in the stable form of the module docs, from `c = cos w`, `s = sin w`
 /// (`w` between `r` and the cap axis), `cs`, `ss`.
+#[cfg(feature = "cap")]
 fn phong_cap_from_angle<T: Real>(m: u32, c: T, s: T, cs: T, ss: T) -> T {
     // q^2 = ss^2 - c^2 = s^2 - cs^2: the first form cancels when sigma and w are both near
     // pi/2 or c and ss both near 1, the second when both are small; take the factors of the
@@ -241,6 +193,7 @@ fn phong_cap_from_angle<T: Real>(m: u32, c: T, s: T, cs: T, ss: T) -> T {
     ((total + e) * T::FRAC_1_TAU).clamp01()
 }
 
+#[cfg(feature = "cap")]
 impl<T: Real> CapLight<T> {
     /// `[phong_cap]`: Phong illumination from the cap (Snyder eq. 24), in [0, 1].
     ///
@@ -258,6 +211,7 @@ impl<T: Real> CapLight<T> {
     }
 }
 
+#[cfg(feature = "cap")]
 impl<T: Real> SphereLight<T> {
     /// `[phong_sphere]` with precise errors: see [`SphereLight::phong`].
     ///
@@ -284,6 +238,7 @@ impl<T: Real> SphereLight<T> {
 /// `T_sum(a, b, n, x)` of Snyder appendix G: the sum of `T(a, b, k, x) = integral from 0 to x
 /// of (a cos t + b sin t)^k dt` over `k = n, n - 2, ...` down to 0 or 1; `f = a^2 + b^2`.
 #[inline]
+#[cfg(feature = "polygon")]
 fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b: T, f: T) -> T {
     let g = (a * cos_x + b * sin_x).clamp(-T::ONE, T::ONE);
     let g2 = g * g;
@@ -306,6 +261,7 @@ fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b
     sum
 }
 
+#[cfg(feature = "polygon")]
 impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[phong_polygon]` with precise errors: see [`PolygonLight::phong`].
     ///

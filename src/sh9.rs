@@ -208,6 +208,9 @@ impl<T: Real> Sh9<T> {
     /// # Errors
     /// [`Error::NotFinite`] for any input, [`Error::RadiusNotPositive`],
     /// [`Error::PointInsideSphere`].
+    ///
+    /// Needs the `cap` feature (it builds the sphere's cap with [`crate::SphereLight`]).
+    #[cfg(feature = "cap")]
     pub fn sphere(center: Vec3<T>, radius: T, p: Vec3<T>, colour: Rgb<T>) -> Result<Self, Error> {
         let s = crate::cap::SphereLight::new(center, radius)?;
         let cap = s.cap_at(p)?;
