@@ -261,16 +261,18 @@ impl<T: Real> SphereLight<T> {
     /// A sphere of `radius` > 0 at `center`.
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for either parameter, [`Error::RadiusNotPositive`].
+    /// [`Error::NotFinite`] for either parameter, [`Error::RadiusNotPositive`],
+    /// [`Error::OutOfRange`] for a coordinate or radius beyond [`Real::COORDINATE_LIMIT`].
     pub fn new(center: Vec3<T>, radius: T) -> Result<Self, Error> {
-        if !center.is_finite() {
-            return Err(Error::NotFinite("center"));
-        }
+        center.check_position("center")?;
         if !radius.is_finite() {
             return Err(Error::NotFinite("radius"));
         }
         if !(radius > T::ZERO) {
             return Err(Error::RadiusNotPositive);
+        }
+        if !(radius.to_f64() <= T::COORDINATE_LIMIT) {
+            return Err(Error::OutOfRange("radius"));
         }
         Ok(SphereLight { center, radius })
     }

@@ -35,8 +35,13 @@ pub enum Error {
     SigmaOutOfRange,
     /// A disc half-angle alpha outside [0, pi].
     AlphaOutOfRange,
-    /// A Phong exponent too large for the crate (more than [`crate::lobe::MAX_EXPONENT`]).
+    /// A Phong exponent too large for the crate (more than [`crate::lobe::MAX_EXPONENT`], or
+    /// [`crate::Real::MAX_PHONG_EXPONENT`] of the scalar type: 255 for the fixed-point type).
     ExponentOutOfRange,
+    /// The named position parameter has a coordinate beyond
+    /// [`crate::Real::COORDINATE_LIMIT`] of the scalar type (only the fixed-point type has a
+    /// limit: 4, so that products of point differences stay inside its range).
+    OutOfRange(&'static str),
     /// A shading point on the segment of a line light (to within the precision of the scalar
     /// type: closer than `Real::TINY` times the light's distance scale).
     PointOnSegment,
@@ -89,6 +94,9 @@ impl fmt::Display for Error {
             Error::SigmaOutOfRange => f.write_str("sigma is outside [0, pi/2]"),
             Error::AlphaOutOfRange => f.write_str("alpha is outside [0, pi]"),
             Error::ExponentOutOfRange => f.write_str("Phong exponent m is too large"),
+            Error::OutOfRange(p) => {
+                write!(f, "{p} is outside the coordinate range of the scalar type")
+            }
             Error::PointOnSegment => f.write_str("shading point is on the segment"),
             Error::DecayOutOfRange => f.write_str("decay k is outside {0, 1, 2, 3}"),
             Error::Overflow => f.write_str("the value overflows the scalar type"),

@@ -55,6 +55,7 @@
 #[cfg(feature = "cap")]
 pub mod cap;
 pub mod error;
+pub mod illuminant;
 #[cfg(feature = "hemisphere")]
 pub mod hemisphere;
 #[cfg(feature = "line")]
@@ -66,6 +67,8 @@ pub mod moments;
 pub mod phong;
 #[cfg(feature = "polygon")]
 pub mod polygon;
+#[cfg(feature = "raster")]
+pub mod raster;
 pub mod real;
 #[cfg(feature = "sh9")]
 pub mod sh9;
@@ -77,6 +80,7 @@ pub mod vec3;
 #[cfg(feature = "cap")]
 pub use cap::{CapLight, SphereLight};
 pub use error::Error;
+pub use illuminant::{Ambient, DirectionalLight, Illuminant, PointLight, Tinted};
 #[cfg(feature = "hemisphere")]
 pub use hemisphere::{HemisphereLight, OvercastSky, SkyGround};
 #[cfg(feature = "line")]
@@ -87,6 +91,8 @@ pub use moments::{lune_normalization, try_lune_normalization};
 #[cfg(feature = "polygon")]
 pub use polygon::PolygonLight;
 pub use real::{Fast32, Real};
+#[cfg(feature = "fixed")]
+pub use real::Fixed22;
 #[cfg(feature = "sh9")]
 pub use sh9::{Environment, Sh9, Sh9Irradiance};
 #[cfg(feature = "shaping")]

@@ -26,7 +26,8 @@ impl<T: Real> PhongLobe<T> {
     /// The exact lobe of exponent `m` (odd or even).
     ///
     /// # Errors
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (or the evaluated `m` above
+    /// [`Real::MAX_PHONG_EXPONENT`], 255 for [`crate::Fixed22`]).
     pub fn new(m: u32) -> Result<Self, Error> {
         Self::build(m, m)
     }
@@ -36,13 +37,14 @@ impl<T: Real> PhongLobe<T> {
     /// approximation for even `m`; exact for odd `m`.
     ///
     /// # Errors
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (or the evaluated `m` above
+    /// [`Real::MAX_PHONG_EXPONENT`], 255 for [`crate::Fixed22`]).
     pub fn odd_only(m: u32) -> Result<Self, Error> {
         Self::build(m, m | 1)
     }
 
     fn build(requested: u32, m: u32) -> Result<Self, Error> {
-        if requested > MAX_EXPONENT {
+        if requested > MAX_EXPONENT || m > T::MAX_PHONG_EXPONENT {
             return Err(Error::ExponentOutOfRange);
         }
         let s_m = sine_power_integral_pi::<f64>(m);

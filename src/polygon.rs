@@ -66,6 +66,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::TooFewVertices`], [`Error::TooManyVertices`], [`Error::NotFinite`] (`"verts"`),
+    /// [`Error::OutOfRange`] (`"verts"`, beyond [`Real::COORDINATE_LIMIT`]),
     /// [`Error::ZeroArea`], [`Error::NotPlanar`], [`Error::NotSimple`] (edges that cross or
     /// touch, including repeated vertices).
     pub fn new(verts: &[Vec3<T>]) -> Result<Self, Error> {
@@ -75,8 +76,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         if verts.len() > N {
             return Err(Error::TooManyVertices { capacity: N });
         }
-        if !verts.iter().all(|v| v.is_finite()) {
-            return Err(Error::NotFinite("verts"));
+        for v in verts {
+            v.check_position("verts")?;
         }
         let normal = validate_polygon(verts)?;
         let mut v = Vec::new();
@@ -198,7 +199,7 @@ pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: 
     if !(m > T::ZERO) || !m.is_finite() {
         return T::ZERO;
     }
-    let g = g * (T::ONE / m);
+    let g = g.div_components(m);
     let s = g.length();
     let theta = (s * m).atan2(ua.dot(ub));
     (theta * g.dot(k) / s).finite_or_zero()

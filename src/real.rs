@@ -20,12 +20,18 @@ use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 pub mod fast32;
 pub use fast32::Fast32;
+#[cfg(feature = "fixed")]
+pub mod fixed22;
+#[cfg(feature = "fixed")]
+pub use fixed22::Fixed22;
 
 mod sealed {
     pub trait Sealed {}
     impl Sealed for f32 {}
     impl Sealed for f64 {}
     impl Sealed for super::Fast32 {}
+    #[cfg(feature = "fixed")]
+    impl Sealed for super::Fixed22 {}
 }
 
 /// A real-number type the models are generic over (sealed; see the module docs).
@@ -69,6 +75,13 @@ pub trait Real:
     /// The smallest positive value whose square and reciprocal square are both finite and
     /// normal; lengths below it are treated as zero.
     const TINY: Self;
+    /// The largest Phong exponent this scalar type supports (beyond it a [`crate::PhongLobe`]
+    /// constructor returns [`crate::Error::ExponentOutOfRange`]).
+    const MAX_PHONG_EXPONENT: u32 = crate::lobe::MAX_EXPONENT;
+    /// The largest absolute coordinate the constructors accept for positions (points, sphere
+    /// centres, radii): unbounded for the float types, [`Fixed22::COORDINATE_LIMIT`] for the
+    /// fixed-point type, so that differences of points stay representable.
+    const COORDINATE_LIMIT: f64 = f64::MAX;
 
     /// Converts an `f64` (rounding to nearest). Used for literals; folds at compile time.
     fn from_f64(x: f64) -> Self;
@@ -170,6 +183,15 @@ pub trait Real:
     fn acos_clamped(self) -> Self {
         let x = self.clamp(-Self::ONE, Self::ONE);
         ((Self::ONE - x) * (Self::ONE + x)).sqrt().atan2(x)
+    }
+    /// `[x / m, y / m, z / m]` for `m >= max(|x|, |y|, |z|)`, `m > 0`: the rescaling that lets
+    /// lengths be computed without overflow or underflow. The float types multiply by one
+    /// reciprocal; the fixed-point type divides each component, since `1/m` itself saturates
+    /// for `m < 1/512` while every quotient here is at most 1.
+    #[inline(always)]
+    fn div3(v: [Self; 3], m: Self) -> [Self; 3] {
+        let r = Self::ONE / m;
+        [v[0] * r, v[1] * r, v[2] * r]
     }
     /// `self * self`.
     #[inline(always)]

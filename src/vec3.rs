@@ -49,6 +49,13 @@ impl<T: Real> Vec3<T> {
     pub fn length(self) -> T {
         self.dot(self).sqrt()
     }
+    /// Each component divided by `m` (through [`Real::div3`]: exact rescaling for every
+    /// backend, no saturation in fixed point when `m` bounds the components).
+    #[inline(always)]
+    pub fn div_components(self, m: T) -> Self {
+        let [x, y, z] = T::div3([self.x, self.y, self.z], m);
+        Vec3::new(x, y, z)
+    }
     /// `true` if every component is finite.
     #[inline(always)]
     pub fn is_finite(self) -> bool {
@@ -70,7 +77,7 @@ impl<T: Real> Vec3<T> {
         if !(m > T::TINY) || !m.is_finite() {
             return None;
         }
-        let s = self * (T::ONE / m);
+        let s = self.div_components(m);
         let len = s.length();
         Some(s * (T::ONE / len))
     }
@@ -81,7 +88,7 @@ impl<T: Real> Vec3<T> {
         if !(m > T::TINY) || !m.is_finite() {
             return None;
         }
-        let s = self * (T::ONE / m);
+        let s = self.div_components(m);
         let len = s.length();
         Some((s * (T::ONE / len), len * m))
     }
@@ -91,6 +98,20 @@ impl<T: Real> Vec3<T> {
             return Err(Error::NotFinite(param));
         }
         self.normalize().ok_or(Error::ZeroLength(param))
+    }
+    /// `Ok(self)` if every coordinate is finite and within [`Real::COORDINATE_LIMIT`], the
+    /// check every constructor makes of a position.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`], naming `param`.
+    pub fn check_position(self, param: &'static str) -> Result<Self, Error> {
+        if !self.is_finite() {
+            return Err(Error::NotFinite(param));
+        }
+        if !(self.max_abs().to_f64() <= T::COORDINATE_LIMIT) {
+            return Err(Error::OutOfRange(param));
+        }
+        Ok(self)
     }
     /// A unit vector perpendicular to `self` (which must be unit length).
     #[inline]
