@@ -289,12 +289,10 @@ impl<T: Real> SphereLight<T> {
     /// The cap the sphere subtends at `p` (eq. 7).
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for `p`, [`Error::PointInsideSphere`].
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for `p`, [`Error::PointInsideSphere`].
     #[inline]
     pub(crate) fn cap_at(&self, p: Vec3<T>) -> Result<SphereCap<T>, Error> {
-        if !p.is_finite() {
-            return Err(Error::NotFinite("p"));
-        }
+        p.check_position("p")?;
         let (axis, d) = (self.center - p)
             .normalize_with_length()
             .ok_or(Error::PointInsideSphere)?;

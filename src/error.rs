@@ -95,7 +95,7 @@ impl fmt::Display for Error {
             Error::AlphaOutOfRange => f.write_str("alpha is outside [0, pi]"),
             Error::ExponentOutOfRange => f.write_str("Phong exponent m is too large"),
             Error::OutOfRange(p) => {
-                write!(f, "{p} is outside the coordinate range of the scalar type")
+                write!(f, "{p} is outside the coordinate range of the scalar type (|x| <= 4 for the fixed-point type)")
             }
             Error::PointOnSegment => f.write_str("shading point is on the segment"),
             Error::DecayOutOfRange => f.write_str("decay k is outside {0, 1, 2, 3}"),

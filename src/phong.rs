@@ -268,9 +268,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`.
     pub fn try_phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
-        if !p.is_finite() {
-            return Err(Error::NotFinite("p"));
-        }
+        p.check_position("p")?;
         let r = r.try_normalize("r")?;
         if self.in_plane(p) {
             return Ok(T::ZERO);

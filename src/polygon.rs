@@ -113,11 +113,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[polygon_lambert]` with precise errors: see [`PolygonLight::lambert`].
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for `p` or `n`, [`Error::ZeroLength`] for `n`.
+    /// [`Error::NotFinite`] for `p` or `n`, [`Error::ZeroLength`] for `n`,
+    /// [`Error::OutOfRange`] for `p` beyond [`Real::COORDINATE_LIMIT`] (fixed point only).
     pub fn try_lambert(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
-        if !p.is_finite() {
-            return Err(Error::NotFinite("p"));
-        }
+        p.check_position("p")?;
         let n = n.try_normalize("n")?;
         if self.in_plane(p) {
             return Ok(T::ZERO);

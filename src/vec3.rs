@@ -108,7 +108,8 @@ impl<T: Real> Vec3<T> {
         if !self.is_finite() {
             return Err(Error::NotFinite(param));
         }
-        if !(self.max_abs().to_f64() <= T::COORDINATE_LIMIT) {
+        // Folds away for the float types (no limit).
+        if T::COORDINATE_LIMIT < f64::MAX && !(self.max_abs().to_f64() <= T::COORDINATE_LIMIT) {
             return Err(Error::OutOfRange(param));
         }
         Ok(self)

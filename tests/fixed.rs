@@ -159,7 +159,11 @@ fn sin_cos_within_one_lsb() {
     let mut xs: Vec<i32> = (0..1_000_000)
         .map(|_| (rng.range(-64.0, 64.0) / LSB) as i32)
         .collect();
-    xs.extend(edge_bits().into_iter().filter(|b| b.unsigned_abs() <= 64 << 22));
+    xs.extend(
+        edge_bits()
+            .into_iter()
+            .filter(|b| b.unsigned_abs() <= 64 << 22),
+    );
     // Exhaustive over [0, 2^-6) (2^16 points: the smallest angles) and around pi/2 and pi.
     xs.extend(0..1 << 16);
     for c in [FRAC_PI_2, PI, 2.0 * PI] {
@@ -168,7 +172,9 @@ fn sin_cos_within_one_lsb() {
     }
     let (es, at_s) = max_lsb(&xs, |x| x.sin(), f64::sin);
     let (ec, at_c) = max_lsb(&xs, |x| x.cos(), f64::cos);
-    println!("[maxerr] Fixed22 sin: {es:.3} LSB at bits {at_s}; cos: {ec:.3} LSB at {at_c} (bound 1)");
+    println!(
+        "[maxerr] Fixed22 sin: {es:.3} LSB at bits {at_s}; cos: {ec:.3} LSB at {at_c} (bound 1)"
+    );
     assert!(es <= 1.0 && ec <= 1.0);
     // Outside the documented domain: finite, bounded by 1 in magnitude plus rounding.
     for b in edge_bits() {
@@ -252,7 +258,11 @@ impl Track {
     fn add<D: Fn() -> String>(&mut self, got: Option<f64>, want: Option<f64>, d: D) {
         let Some(want) = want else { return };
         let Some(got) = got else {
-            panic!("{}: fixed rejected a case f64 accepts: {}", self.e.name, d());
+            panic!(
+                "{}: fixed rejected a case f64 accepts: {}",
+                self.e.name,
+                d()
+            );
         };
         self.cases += 1;
         self.e.add(got, want, d);
@@ -310,7 +320,14 @@ fn hemisphere_family_within_tolerance() {
         let (n, axis) = (rdv::<F>(n), rdv::<F>(axis));
         fn hemi<T: Real>(axis: V3, n: V3, cos: bool) -> Option<f64> {
             let l = HemisphereLight::<T>::new(v(axis)).ok()?;
-            Some(if cos { l.lambert_cos(v(n)) } else { l.lambert_const(v(n)) }.to_f64())
+            Some(
+                if cos {
+                    l.lambert_cos(v(n))
+                } else {
+                    l.lambert_const(v(n))
+                }
+                .to_f64(),
+            )
         }
         let d = || format!("axis={axis:?} n={n:?}");
         hc.add(hemi::<F>(axis, n, false), hemi::<f64>(axis, n, false), d);
@@ -393,11 +410,7 @@ fn sh9_within_tolerance() {
         let coeffs: Vec<V3> = (0..9)
             .map(|k| {
                 let lo = if k == 0 { 0.0 } else { -1.0 };
-                rdv::<F>([
-                    rng.range(lo, 1.0),
-                    rng.range(lo, 1.0),
-                    rng.range(lo, 1.0),
-                ])
+                rdv::<F>([rng.range(lo, 1.0), rng.range(lo, 1.0), rng.range(lo, 1.0)])
             })
             .collect();
         fn e<T: Real>(coeffs: &[V3], n: V3) -> Option<[f64; 3]> {
@@ -407,7 +420,9 @@ fn sh9_within_tolerance() {
         }
         if let (Some(a), Some(b)) = (e::<F>(&coeffs, n), e::<f64>(&coeffs, n)) {
             for k in 0..3 {
-                env.add(Some(a[k]), Some(b[k]), || format!("coeffs={coeffs:?} n={n:?}"));
+                env.add(Some(a[k]), Some(b[k]), || {
+                    format!("coeffs={coeffs:?} n={n:?}")
+                });
             }
         }
         let axis = rdv::<F>(rng.sdir());
@@ -497,7 +512,14 @@ fn phong_hemi_and_cap_within_tolerance() {
             fn h<T: Real>(m: u32, axis: V3, r: V3, cos: bool) -> Option<f64> {
                 let l = HemisphereLight::<T>::new(v(axis)).ok()?;
                 let lobe = PhongLobe::new(m).ok()?;
-                Some(if cos { l.phong_cos(&lobe, v(r)) } else { l.phong_const(&lobe, v(r)) }.to_f64())
+                Some(
+                    if cos {
+                        l.phong_cos(&lobe, v(r))
+                    } else {
+                        l.phong_const(&lobe, v(r))
+                    }
+                    .to_f64(),
+                )
             }
             fn c<T: Real>(m: u32, axis: V3, sigma: f64, r: V3) -> Option<f64> {
                 let l = CapLight::<T>::new(v(axis), T::from_f64(sigma)).ok()?;
@@ -530,9 +552,11 @@ fn phong_sphere_and_polygon_within_tolerance() {
                 let lobe = PhongLobe::new(m).ok()?;
                 s.try_phong(&lobe, v(p), v(r)).ok().map(|x| x.to_f64())
             }
-            sph.add(f::<F>(m, c, rad, p, dir), f::<f64>(m, c, rad, p, dir), || {
-                format!("c={c:?} radius={rad} p={p:?} r={dir:?}")
-            });
+            sph.add(
+                f::<F>(m, c, rad, p, dir),
+                f::<f64>(m, c, rad, p, dir),
+                || format!("c={c:?} radius={rad} p={p:?} r={dir:?}"),
+            );
         }
         sph.finish();
         let mut poly = Track::new(&format!("phong_polygon m={m} Fixed22 vs f64"));
@@ -600,4 +624,91 @@ fn shaping_within_tolerance() {
     }
     se.finish();
     df.finish();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Overflow: raw bit patterns everywhere (this test profile has overflow checks on).
+// ---------------------------------------------------------------------------------------------
+
+fn any_bits(rng: &mut Rng) -> F {
+    // Half uniform over all 2^32 patterns (mostly huge magnitudes), half small, plus edges.
+    match rng.below(8) {
+        0..=3 => fx(rng.next_u64() as i32),
+        4..=6 => fx((rng.range(-8.0, 8.0) / LSB) as i32),
+        _ => [F::MIN, F::MAX, F::ZERO, F::DELTA, -F::DELTA, F::ONE][rng.below(6) as usize],
+    }
+}
+fn any_vec(rng: &mut Rng) -> Vec3<F> {
+    Vec3::new(any_bits(rng), any_bits(rng), any_bits(rng))
+}
+
+/// Every constructor and per-sample function of the fixed path on arbitrary bit patterns: no
+/// panic (overflow checks are on in this profile), and the normalized models stay in [0, 1]
+/// whatever the input (inside the supported ranges the accuracy tests above bound them).
+#[test]
+fn arbitrary_bit_patterns_never_overflow() {
+    let mut rng = Rng::new(0x0f10);
+    let unit = |x: F| (0.0..=1.0).contains(&x.to_f64());
+    let mut accepted = [0usize; 6];
+    for i in 0..100_000 {
+        let (a, b, c) = (any_vec(&mut rng), any_vec(&mut rng), any_vec(&mut rng));
+        let (s, t) = (any_bits(&mut rng), any_bits(&mut rng));
+        let lobe = PhongLobe::<F>::new(rng.below(256) as u32).unwrap();
+        if let Ok(h) = HemisphereLight::new(a) {
+            accepted[0] += 1;
+            assert!(unit(h.lambert_const(b)) && unit(h.lambert_cos(b)));
+            assert!(unit(h.phong_const(&lobe, c)) && unit(h.phong_cos(&lobe, c)));
+        }
+        let _ = OvercastSky::new(a, s).map(|o| o.lambert(b));
+        let _ = SkyGround::new(a, Rgb::splat(s), Rgb::splat(t)).map(|g| g.irradiance(b));
+        if let Ok(cap) = CapLight::new(a, s) {
+            accepted[1] += 1;
+            assert!(unit(cap.lambert_hermite(b)) && unit(cap.phong(&lobe, c)));
+        }
+        if let Ok(sph) = SphereLight::new(a, s) {
+            accepted[2] += 1;
+            assert!(unit(sph.lambert_hermite(b, c)) && unit(sph.phong(&lobe, b, c)));
+        }
+        // Vertices inside the coordinate limit (others are refused, tested above), as a
+        // triangle or a planar parallelogram; p and n arbitrary.
+        let small = |rng: &mut Rng| {
+            let mut q = || F::from_f64(rng.range(-4.0, 4.0));
+            Vec3::new(q(), q(), q())
+        };
+        let (v0, v1, v2) = (small(&mut rng), small(&mut rng), small(&mut rng));
+        let tri = [v0, v1, v2, v2 + (v0 - v1) * F::HALF];
+        let k = 3 + (i % 2);
+        if let Ok(poly) = PolygonLight::<F, 8>::new(&tri[..k]) {
+            accepted[3] += 1;
+            let (p, n) = (any_vec(&mut rng), any_vec(&mut rng));
+            assert!(unit(poly.lambert(p, n)) && unit(poly.phong(&lobe, p, n)));
+        }
+        let coeffs: [Rgb<F>; 9] = core::array::from_fn(|_| Rgb::splat(any_bits(&mut rng)));
+        if let Ok(sh) = Sh9::new(coeffs) {
+            accepted[4] += 1;
+            let _ = sh.prepare().irradiance(b);
+        }
+        if let Ok(d) = Sh9::disc(a, s, Rgb::splat(t)) {
+            let _ = d.prepare().irradiance(b);
+        }
+        if let Ok(e) = Superellipse::new(
+            s,
+            t,
+            any_bits(&mut rng),
+            any_bits(&mut rng),
+            any_bits(&mut rng),
+        ) {
+            accepted[5] += 1;
+            assert!(unit(e.shape(a)));
+        }
+        let f: [F; 8] = core::array::from_fn(|_| any_bits(&mut rng));
+        if let Ok(d) = DistanceFalloff::new(f[0], f[1], f[2], f[3], f[4], f[5], f[6]) {
+            let _ = d.falloff(f[7]);
+        }
+    }
+    println!(
+        "fixed bit patterns: 100000 rounds; accepted hemisphere {}, cap {}, sphere {}, polygon {}, sh9 {}, superellipse {}",
+        accepted[0], accepted[1], accepted[2], accepted[3], accepted[4], accepted[5]
+    );
+    assert!(accepted.iter().all(|&n| n > 500), "{accepted:?}");
 }

@@ -19,8 +19,8 @@
 use std::io::{self, BufRead, Write};
 
 use arealight::{
-    CapLight, Fast32, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb, Sh9,
-    SkyGround, SphereLight, Vec3,
+    CapLight, Fast32, Fixed22, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb,
+    Sh9, SkyGround, SphereLight, Vec3,
 };
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -41,7 +41,8 @@ pub enum Backend {
     /// `T = arealight::Fast32`: f32 with the library's cheap sqrt and atan2.
     #[value(name = "f32-fast")]
     F32Fast,
-    /// The fixed-point path (not implemented yet: every model answers "unsupported").
+    /// The fixed-point path: `T = arealight::Fixed22` (I10F22), for the models of
+    /// [`FIXED_SUPPORTED`]; the others answer "unsupported".
     #[value(name = "fixed")]
     Fixed,
 }
@@ -526,6 +527,98 @@ impl OutLine {
     }
 }
 
+/// The models the fixed-point backend ([`Fixed22`]) answers (issue 3's scope, plus the
+/// uberlight shaping factors).
+pub const FIXED_SUPPORTED: &[&str] = &[
+    "hemi_const",
+    "hemi_cos",
+    "sky_overcast",
+    "sky_ground",
+    "cap_lambert_hermite",
+    "sphere_lambert_hermite",
+    "polygon_lambert",
+    "phong_hemi_const",
+    "phong_hemi_cos",
+    "phong_cap",
+    "phong_sphere",
+    "phong_polygon",
+    "sh9_irradiance",
+    "sh9_disc_irradiance",
+    "superellipse_shape",
+    "distance_falloff",
+];
+
+/// The fixed-point type cannot hold NaN, infinities or magnitudes of 512 and more: such an
+/// input gets the error the float backends give for a non-finite value, or a range error,
+/// instead of a silently saturated value. (Positions beyond the fixed path's coordinate limit
+/// are refused by the library itself.) Integer parameters (`m`, `k`) are parsed as integers.
+fn fixed_inputs_representable(map: &Map<String, Value>) -> EvalResult<()> {
+    fn walk(v: &Value, name: &str) -> EvalResult<()> {
+        match v {
+            Value::Array(a) => a.iter().try_for_each(|x| walk(x, name)),
+            Value::Number(_) | Value::String(_) => {
+                let x = number(v, name)?;
+                if !x.is_finite() {
+                    Err(arealight::Error::NotFinite(static_name(name)).into())
+                } else if x.abs() >= 512.0 {
+                    Err(EvalError(format!(
+                        "{name} is outside the range of the fixed-point backend (|x| < 512)"
+                    )))
+                } else {
+                    Ok(())
+                }
+            }
+            _ => Ok(()),
+        }
+    }
+    for (k, v) in map {
+        if !matches!(k.as_str(), "id" | "model" | "m" | "k") {
+            walk(v, k)?;
+        }
+    }
+    Ok(())
+}
+
+/// The library's errors name parameters with `&'static str`; the few names the protocol uses
+/// are interned here (an unknown key keeps a generic name).
+fn static_name(name: &str) -> &'static str {
+    const NAMES: &[&str] = &[
+        "n",
+        "axis",
+        "zenith",
+        "c",
+        "up",
+        "sky",
+        "ground",
+        "sigma",
+        "p",
+        "center",
+        "radius",
+        "verts",
+        "r",
+        "coeffs",
+        "alpha",
+        "pos",
+        "a",
+        "b",
+        "A",
+        "B",
+        "d",
+        "z",
+        "M",
+        "d0",
+        "znear",
+        "zfar",
+        "near_edge",
+        "far_edge",
+    ];
+    NAMES
+        .iter()
+        .find(|&&x| x == name)
+        .copied()
+        .unwrap_or("a parameter")
+}
+
 /// Answers one non-blank input line.
 pub fn process_line(line: &[u8], backend: Backend) -> OutLine {
     let parsed: Value = match serde_json::from_slice(line) {
@@ -552,10 +645,13 @@ pub fn process_line(line: &[u8], backend: Backend) -> OutLine {
         Backend::F32 => eval_model::<f32>(model, &params),
         Backend::F32Fast => eval_model::<Fast32>(model, &params),
         Backend::Fixed => {
-            if SUPPORTED.contains(&model) || NOT_YET.contains(&model) {
-                Err(EvalError::from(
-                    "unsupported: fixed-point backend not implemented yet",
-                ))
+            if FIXED_SUPPORTED.contains(&model) {
+                fixed_inputs_representable(&map)
+                    .and_then(|()| eval_model::<Fixed22>(model, &params))
+            } else if SUPPORTED.contains(&model) || NOT_YET.contains(&model) {
+                Err(EvalError(format!(
+                    "unsupported: the fixed-point backend does not implement {model}"
+                )))
             } else {
                 Err(EvalError(format!("unknown model: {model}")))
             }

@@ -483,16 +483,63 @@ fn unsupported_and_unknown_models() {
     }
 }
 
+/// The fixed-point backend's models (issue 3's scope and the shaping factors).
+const FIXED_MODELS: &[&str] = &[
+    "hemi_const",
+    "hemi_cos",
+    "sky_overcast",
+    "sky_ground",
+    "cap_lambert_hermite",
+    "sphere_lambert_hermite",
+    "polygon_lambert",
+    "phong_hemi_const",
+    "phong_hemi_cos",
+    "phong_cap",
+    "phong_sphere",
+    "phong_polygon",
+    "sh9_irradiance",
+    "sh9_disc_irradiance",
+    "superellipse_shape",
+    "distance_falloff",
+];
+
 #[test]
-fn fixed_backend_is_unsupported() {
+fn fixed_backend_answers_its_models_within_1_1024_and_refuses_the_others() {
     let cases = valid_cases();
+    let reference = run("f64", &cases);
     let out = run("fixed", &cases);
-    for (case, got) in cases.iter().zip(&out) {
+    for ((case, r), got) in cases.iter().zip(&reference).zip(&out) {
         assert_eq!(got["id"], case["id"]);
-        assert_eq!(
-            error_of(got),
-            "unsupported: fixed-point backend not implemented yet"
-        );
+        let model = case["model"].as_str().unwrap();
+        if FIXED_MODELS.contains(&model) {
+            assert!(got.get("error").is_none(), "{got}");
+            for (a, b) in numbers(got).iter().zip(numbers(r)) {
+                assert!(
+                    (a - b).abs() <= 1.0 / 1024.0,
+                    "{model}: fixed {a} vs f64 {b}"
+                );
+            }
+        } else {
+            assert_eq!(
+                error_of(got),
+                format!("unsupported: the fixed-point backend does not implement {model}")
+            );
+        }
+    }
+    // What the format cannot hold is refused, never saturated silently.
+    let bad = [
+        (json!({"id": 1, "model": "hemi_const", "n": ["NaN", 0, 1], "axis": [0, 0, 1]}),
+         "n is not finite (NaN or infinity)"),
+        (json!({"id": 2, "model": "hemi_const", "n": [0, 0, 1e6], "axis": [0, 0, 1]}),
+         "n is outside the range of the fixed-point backend (|x| < 512)"),
+        (json!({"id": 3, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
+                "verts": [[-1, -1, 5], [1, -1, 5], [1, 1, 5]]}),
+         "verts is outside the coordinate range of the scalar type (|x| <= 4 for the fixed-point type)"),
+        (json!({"id": 4, "model": "phong_cap", "r": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3, "m": 256}),
+         "Phong exponent m is too large"),
+    ];
+    for (line, want) in bad {
+        assert_eq!(error_of(&one("fixed", line)), want);
     }
 }
 

@@ -108,7 +108,11 @@ impl core::fmt::Display for Fixed22 {
 /// `x * 2^22` rounded, for constants (evaluated at compile time).
 const fn q22(x: f64) -> Fixed22 {
     let s = x * (1u64 << FRAC) as f64;
-    Fixed22::from_bits(if s >= 0.0 { (s + 0.5) as i32 } else { (s - 0.5) as i32 })
+    Fixed22::from_bits(if s >= 0.0 {
+        (s + 0.5) as i32
+    } else {
+        (s - 0.5) as i32
+    })
 }
 
 impl Add for Fixed22 {
@@ -282,7 +286,11 @@ fn atan2_q30(y: i32, x: i32) -> i64 {
     }
     let (ax, ay) = (x.unsigned_abs(), y.unsigned_abs());
     let swap = ay > ax;
-    let t = i64::from(if swap { ratio_q30(ax, ay) } else { ratio_q30(ay, ax) });
+    let t = i64::from(if swap {
+        ratio_q30(ax, ay)
+    } else {
+        ratio_q30(ay, ax)
+    });
     let z = mul_q30(t, t);
     let mut a = mul_q30(t, horner_q30(&ATAN_Q30, z));
     if swap {
