@@ -192,8 +192,8 @@ impl<T: Real> CapLight<T> {
     pub fn sigma(&self) -> T {
         self.sigma
     }
-    #[cfg(feature = "phong")]
-    pub(crate) fn cos_sin_sigma(&self) -> (T, T) {
+    /// `(cos sigma, sin sigma)`, computed once by the constructor.
+    pub fn cos_sin_sigma(&self) -> (T, T) {
         (self.cos_sigma, self.sin_sigma)
     }
 

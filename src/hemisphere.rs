@@ -97,6 +97,15 @@ impl<T: Real> OvercastSky<T> {
         })
     }
 
+    /// The unit zenith direction.
+    pub fn zenith(&self) -> Vec3<T> {
+        self.sky.axis
+    }
+    /// The zenith luminance `C`.
+    pub fn zenith_luminance(&self) -> T {
+        self.zenith_luminance
+    }
+
     /// `[sky_overcast]`: `C/3 hemi_const + 2C/3 hemi_cos` (not clamped: scales with `C`).
     ///
     /// Accuracy: as [`HemisphereLight::lambert_cos`], times `C`. Cost: that of `lambert_cos`
@@ -135,6 +144,19 @@ impl<T: Real> SkyGround<T> {
             sky: sky.check_finite("sky")?,
             ground: ground.check_finite("ground")?,
         })
+    }
+
+    /// The unit up direction.
+    pub fn up(&self) -> Vec3<T> {
+        self.up
+    }
+    /// The sky radiance (the hemisphere around `up`).
+    pub fn sky(&self) -> Rgb<T> {
+        self.sky
+    }
+    /// The ground radiance (the hemisphere around `-up`).
+    pub fn ground(&self) -> Rgb<T> {
+        self.ground
     }
 
     /// `[sky_ground]`: `sky (1 + n.up)/2 + ground (1 - n.up)/2` per channel: exact for this

@@ -70,6 +70,7 @@ pub mod polygon;
 #[cfg(feature = "raster")]
 pub mod raster;
 pub mod real;
+pub mod scene;
 #[cfg(feature = "sh9")]
 pub mod sh9;
 #[cfg(feature = "shaping")]
@@ -91,6 +92,7 @@ pub use moments::{lune_normalization, try_lune_normalization};
 #[cfg(feature = "polygon")]
 pub use polygon::PolygonLight;
 pub use real::{Fast32, Real};
+pub use scene::{ObjectBounds, PreparedScene, PushError, Scene, SceneLight};
 #[cfg(feature = "fixed")]
 pub use real::Fixed22;
 #[cfg(feature = "sh9")]

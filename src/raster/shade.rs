@@ -1,0 +1,114 @@
+//! Materials and shaders: what colour a surface point gets.
+//!
+//! The renderer asks a [`Shader`] for the colour at a world point `p` with unit normal `n`
+//! seen from the unit direction `v` (toward the eye), at the vertices (Gouraud) or at every
+//! pixel, as [`Shading`] chooses per draw call. [`Lit`] is the shader of the crate's lights:
+//! a [`Material`] under any [`Illuminant`]; any closure `Fn(p, n, v) -> Rgb` is a shader too
+//! (the host simulator uses that for Arvo's glossy reflection and transmission).
+
+use super::RasterError;
+use crate::illuminant::{mul_rgb, Illuminant};
+use crate::{PhongLobe, Real, Rgb, Vec3};
+
+/// Where the shader runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Shading {
+    /// At the three vertices, the colours interpolated (perspective-correct) across the
+    /// triangle: 3 shader calls per triangle drawn, whatever its size.
+    Gouraud,
+    /// At every pixel, with the interpolated (perspective-correct) position and renormalized
+    /// normal: 1 shader call per visible pixel.
+    PerPixel,
+}
+
+/// Computes the colour of a surface point.
+pub trait Shader<T: Real> {
+    /// The linear colour at world point `p` with unit normal `n` (facing the viewer for
+    /// two-sided surfaces), `v` the unit direction from `p` toward the eye. Should be finite;
+    /// the renderer maps a non-finite channel to 0.
+    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T>;
+}
+
+impl<T: Real, F: Fn(Vec3<T>, Vec3<T>, Vec3<T>) -> Rgb<T>> Shader<T> for F {
+    #[inline]
+    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
+        self(p, n, v)
+    }
+}
+
+/// A surface: diffuse colour, specular colour and Phong exponent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material<T> {
+    /// Diffuse reflectance per channel (multiplies [`Illuminant::diffuse`]).
+    pub diffuse: Rgb<T>,
+    /// Specular reflectance per channel (multiplies [`Illuminant::phong`]); black skips the
+    /// Phong evaluation.
+    pub specular: Rgb<T>,
+    /// The Phong lobe (exponent and its constants).
+    pub lobe: PhongLobe<T>,
+}
+
+impl<T: Real> Material<T> {
+    /// A material with `diffuse` and `specular` colours and Phong exponent `m`.
+    ///
+    /// # Errors
+    /// [`RasterError::Model`] with [`crate::Error::NotFinite`] (`"diffuse"`, `"specular"`) or
+    /// [`crate::Error::ExponentOutOfRange`].
+    pub fn new(diffuse: Rgb<T>, specular: Rgb<T>, m: u32) -> Result<Self, RasterError> {
+        Ok(Material {
+            diffuse: diffuse.check_finite("diffuse")?,
+            specular: specular.check_finite("specular")?,
+            lobe: PhongLobe::new(m)?,
+        })
+    }
+
+    /// A matte material (no specular term).
+    ///
+    /// # Errors
+    /// As [`Material::new`].
+    pub fn matte(diffuse: Rgb<T>) -> Result<Self, RasterError> {
+        Self::new(diffuse, Rgb::splat(T::ZERO), 1)
+    }
+}
+
+/// The mirror direction `2 (n.v) n - v` of `v` about the unit normal `n`.
+#[inline]
+pub fn reflect<T: Real>(v: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
+    n * (T::TWO * n.dot(v)) - v
+}
+
+/// A [`Material`] lit by an [`Illuminant`]: `diffuse * light.diffuse(p, n) +
+/// specular * light.phong(lobe, p, reflect(v, n))`.
+#[derive(Debug)]
+pub struct Lit<'a, T, L: ?Sized> {
+    /// The light (any [`Illuminant`]: one light, an array or slice of them, a tinted or
+    /// shaped light...).
+    pub light: &'a L,
+    /// The surface.
+    pub material: &'a Material<T>,
+}
+
+impl<'a, T, L: ?Sized> Lit<'a, T, L> {
+    /// `material` under `light`.
+    pub fn new(light: &'a L, material: &'a Material<T>) -> Self {
+        Lit { light, material }
+    }
+}
+
+impl<T: Real, L: Illuminant<T> + ?Sized> Shader<T> for Lit<'_, T, L> {
+    /// Accuracy: that of the light's models (plus a few ULPs for the products). Cost: one
+    /// [`Illuminant::diffuse`], one [`Illuminant::phong`] unless the specular colour is
+    /// black, a reflection (6 multiply-adds) and 6 multiply-adds.
+    #[inline]
+    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
+        let m = self.material;
+        let mut c = mul_rgb(m.diffuse, self.light.diffuse(p, n));
+        let s = m.specular;
+        if s.r > T::ZERO || s.g > T::ZERO || s.b > T::ZERO {
+            let r = reflect(v, n);
+            c = c.add(mul_rgb(s, self.light.phong(&m.lobe, p, r)));
+        }
+        c.finite_or_zero()
+    }
+}

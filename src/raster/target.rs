@@ -1,0 +1,258 @@
+//! Render targets: horizontal bands of a caller-provided pixel buffer (with an optional 16-bit
+//! depth band), the RGB565 and RGB888 pixel formats, and the encoding of linear colour.
+
+use super::RasterError;
+use crate::{Real, Rgb};
+
+/// How a linear colour (after the exposure) is encoded into a pixel's channels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Encoding {
+    /// No transfer function: `round(255 x)` (cheapest; looks dark on a display).
+    Linear,
+    /// Gamma 2: `sqrt(x)` (1 square root per channel; within 0.05 of sRGB everywhere).
+    Gamma2,
+    /// The sRGB transfer function (1 `powf` per channel: an `exp` and a `ln`).
+    Srgb,
+}
+
+impl Encoding {
+    /// Encodes one linear channel value: clamped to [0, 1] (NaN as 0), then the transfer
+    /// function. Exact to the backend's `sqrt`/`powf`. Cost: see the variants.
+    #[inline]
+    pub fn encode<T: Real>(self, x: T) -> T {
+        let x = x.clamp01();
+        match self {
+            Encoding::Linear => x,
+            Encoding::Gamma2 => x.sqrt(),
+            Encoding::Srgb => {
+                if x <= T::from_f64(0.003_130_8) {
+                    T::from_f64(12.92) * x
+                } else {
+                    (T::from_f64(1.055) * x.powf(T::from_f64(1.0 / 2.4)) - T::from_f64(0.055))
+                        .clamp01()
+                }
+            }
+        }
+    }
+}
+
+/// Rounds `x` in [0, 1] (clamped; NaN as 0) to an integer in `0..=max`.
+#[inline]
+pub(crate) fn quantize<T: Real>(x: T, max: u32) -> u32 {
+    let v = (x.clamp01() * T::from_u32(max) + T::HALF).to_f64();
+    if v >= max as f64 {
+        max
+    } else if v > 0.0 {
+        v as u32
+    } else {
+        0
+    }
+}
+
+/// A pixel format the renderer writes: built from three encoded channels in [0, 1].
+pub trait PixelFormat: Copy {
+    /// The pixel for encoded channels `r`, `g`, `b` in [0, 1] (clamped; NaN as 0), each
+    /// rounded to nearest. Cost: 3 multiply-adds and conversions.
+    fn from_unit<T: Real>(r: T, g: T, b: T) -> Self;
+    /// The channels as 8-bit values (expanded by bit replication for fewer bits).
+    fn to_rgb8(self) -> [u8; 3];
+}
+
+/// A 16-bit pixel: 5 bits red (high), 6 green, 5 blue (the usual SPI display format, in CPU
+/// byte order: swap the bytes for a display that wants big-endian).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Rgb565(pub u16);
+
+impl Rgb565 {
+    /// From 5-, 6- and 5-bit channels (extra high bits are dropped).
+    pub const fn new(r5: u8, g6: u8, b5: u8) -> Self {
+        Rgb565((((r5 & 31) as u16) << 11) | (((g6 & 63) as u16) << 5) | ((b5 & 31) as u16))
+    }
+}
+
+impl PixelFormat for Rgb565 {
+    #[inline]
+    fn from_unit<T: Real>(r: T, g: T, b: T) -> Self {
+        Rgb565::new(
+            quantize(r, 31) as u8,
+            quantize(g, 63) as u8,
+            quantize(b, 31) as u8,
+        )
+    }
+    #[inline]
+    fn to_rgb8(self) -> [u8; 3] {
+        let (r, g, b) = ((self.0 >> 11) & 31, (self.0 >> 5) & 63, self.0 & 31);
+        [
+            ((r << 3) | (r >> 2)) as u8,
+            ((g << 2) | (g >> 4)) as u8,
+            ((b << 3) | (b >> 2)) as u8,
+        ]
+    }
+}
+
+/// A 24-bit pixel: 8 bits per channel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Rgb888(pub [u8; 3]);
+
+impl PixelFormat for Rgb888 {
+    #[inline]
+    fn from_unit<T: Real>(r: T, g: T, b: T) -> Self {
+        Rgb888([
+            quantize(r, 255) as u8,
+            quantize(g, 255) as u8,
+            quantize(b, 255) as u8,
+        ])
+    }
+    #[inline]
+    fn to_rgb8(self) -> [u8; 3] {
+        self.0
+    }
+}
+
+/// Encodes a linear colour times `exposure` into a pixel.
+#[inline]
+pub fn encode_pixel<T: Real, P: PixelFormat>(c: Rgb<T>, exposure: T, enc: Encoding) -> P {
+    P::from_unit(
+        enc.encode(c.r * exposure),
+        enc.encode(c.g * exposure),
+        enc.encode(c.b * exposure),
+    )
+}
+
+/// The depth value of a cleared depth band (farthest).
+pub const DEPTH_FAR: u16 = u16::MAX;
+
+/// A horizontal band of a frame: `rows` rows of `width` pixels starting at frame row `y0`,
+/// in a caller-provided buffer, with an optional depth band of the same size.
+///
+/// A full frame is the band with `y0 = 0` and all rows. To render a 240x240 display in
+/// 240x16 strips, make one band of 16 rows (7.5 KiB of RGB565, 7.5 KiB of depth), and for
+/// each `y0` in 0, 16, ... 224: [`Band::move_to`], clear it, draw the scene, send the rows.
+#[derive(Debug)]
+pub struct Band<'a, P> {
+    pixels: &'a mut [P],
+    depth: Option<&'a mut [u16]>,
+    width: u16,
+    rows: u16,
+    y0: u16,
+}
+
+impl<'a, P: PixelFormat> Band<'a, P> {
+    /// A band of `pixels.len() / width` rows at frame row `y0`.
+    ///
+    /// # Errors
+    /// [`RasterError::BadSize`] for a zero `width`, a buffer that is empty or not a whole
+    /// number of rows, or more than 65535 rows; [`RasterError::BufferTooSmall`] (`"depth"`)
+    /// when a depth band is given whose length differs from the pixel buffer's.
+    pub fn new(
+        pixels: &'a mut [P],
+        depth: Option<&'a mut [u16]>,
+        width: u16,
+        y0: u16,
+    ) -> Result<Self, RasterError> {
+        if width == 0 || pixels.is_empty() || pixels.len() % width as usize != 0 {
+            return Err(RasterError::BadSize("band"));
+        }
+        let rows = pixels.len() / width as usize;
+        if rows > u16::MAX as usize {
+            return Err(RasterError::BadSize("band"));
+        }
+        if let Some(d) = &depth {
+            if d.len() != pixels.len() {
+                return Err(RasterError::BufferTooSmall {
+                    what: "depth",
+                    needed: pixels.len(),
+                    got: d.len(),
+                });
+            }
+        }
+        Ok(Band {
+            pixels,
+            depth,
+            width,
+            rows: rows as u16,
+            y0,
+        })
+    }
+
+    /// Moves the band to start at frame row `y0` (the contents are kept: clear them).
+    pub fn move_to(&mut self, y0: u16) {
+        self.y0 = y0;
+    }
+    /// Fills the pixels with `colour` and the depth band (if any) with [`DEPTH_FAR`].
+    pub fn clear(&mut self, colour: P) {
+        self.pixels.fill(colour);
+        if let Some(d) = self.depth.as_deref_mut() {
+            d.fill(DEPTH_FAR);
+        }
+    }
+    /// The frame row of the band's first row.
+    pub fn y0(&self) -> u16 {
+        self.y0
+    }
+    /// The number of rows.
+    pub fn rows(&self) -> u16 {
+        self.rows
+    }
+    /// The width in pixels.
+    pub fn width(&self) -> u16 {
+        self.width
+    }
+    /// The pixels, row-major.
+    pub fn pixels(&self) -> &[P] {
+        self.pixels
+    }
+    /// The pixels, row-major, mutable.
+    pub fn pixels_mut(&mut self) -> &mut [P] {
+        self.pixels
+    }
+    /// The depth band, if any (smaller is nearer).
+    pub fn depth(&self) -> Option<&[u16]> {
+        self.depth.as_deref()
+    }
+    /// The pixel at frame coordinates `(x, y)`, or `None` outside the band.
+    pub fn get(&self, x: u16, y: u16) -> Option<P> {
+        let i = self.index(x, y)?;
+        self.pixels.get(i).copied()
+    }
+
+    #[inline]
+    pub(crate) fn index(&self, x: u16, y: u16) -> Option<usize> {
+        if x >= self.width || y < self.y0 || y - self.y0 >= self.rows {
+            return None;
+        }
+        Some((y - self.y0) as usize * self.width as usize + x as usize)
+    }
+
+    /// Depth test and write at buffer index `i`: `true` if `z` is nearer than the stored depth
+    /// (or there is no depth band), storing it.
+    #[inline]
+    pub(crate) fn depth_test(&mut self, i: usize, z: u16) -> bool {
+        match self.depth.as_deref_mut().and_then(|d| d.get_mut(i)) {
+            Some(stored) => {
+                if z < *stored {
+                    *stored = z;
+                    true
+                } else {
+                    false
+                }
+            }
+            None => true,
+        }
+    }
+
+    /// `true` if a depth band is attached.
+    pub(crate) fn has_depth(&self) -> bool {
+        self.depth.is_some()
+    }
+
+    #[inline]
+    pub(crate) fn put(&mut self, i: usize, p: P) {
+        if let Some(px) = self.pixels.get_mut(i) {
+            *px = p;
+        }
+    }
+}

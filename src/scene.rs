@@ -1,0 +1,597 @@
+//! Scenes that pay only for what they use: a fixed-capacity set of lights, prepared once per
+//! object so that the lights that cannot reach it cost nothing per sample.
+//!
+//! A [`Scene`] holds up to `L` lights (a `heapless` vector: no allocation; [`Scene::push`]
+//! hands the light back when full), each with a colour and, with the `shaping` feature, an
+//! optional [`Uberlight`](crate::Uberlight) beam. Everything per-light constant is computed
+//! when the light is built (the models' constructors) or pushed (the light's reach, below).
+//!
+//! [`Scene::prepare`] takes an object's [`ObjectBounds`] (its bounding sphere and, optionally,
+//! the cone its normals lie in) and keeps only the lights that can reach some point and normal
+//! of it. The tests are conservative (a light is dropped only when its contribution is exactly
+//! 0 for every sample of the object, with a margin for rounding), so a prepared scene renders
+//! bit-identical images (`tests/scene.rs`):
+//!
+//! - **beyond a beam**: a shaped light whose beam cannot contain the object: the object's
+//!   depth range along the beam lies wholly before the cut-on zone (`z < znear - near_edge`)
+//!   or after the cut-off zone (`z > zfar + far_edge`), or its bounding sphere lies outside the
+//!   cone circumscribing the superellipse's outer rectangle (`|x| < A z`, `|y| < B z`). Both
+//!   terms are scaled by the beam, so this holds with or without specular.
+//! - **below every horizon** (matte objects only, `specular = false`): every point of the
+//!   light lies strictly below the tangent plane of every point and normal of the object. With
+//!   the normal cone of axis `a` and half-angle `t`, and the light bounded by a sphere `(c, R)`
+//!   (or a direction `d` of angular radius `s`, for the lights at infinity), a light can reach
+//!   iff `|c - o| cos(max(0, phi - t)) + R + R_o > 0` (`phi` the angle between `c - o` and `a`),
+//!   or `cos(max(0, phi - t)) > -sin s`. The Phong term is not culled so: Snyder's Phong
+//!   integral has no horizon (a lobe about `r` reaches below the tangent plane), so an object
+//!   with a specular material keeps these lights.
+//!
+//! Per sample, each light exits early where its value is known to be 0 before any arc tangent
+//! or recurrence: a beam factor of 0 skips both terms; a cap wholly below the horizon
+//! (`n.axis < -sin sigma`) skips the Lambert term, and a Phong lobe that cannot reach it
+//! (`r.axis < -sin sigma`) the Phong term; a polygon wholly below the horizon is rejected by
+//! the clipper's first pass over the vertices (and one wholly above runs no clipping
+//! arithmetic: only the per-vertex sign tests); a directional or point light behind the
+//! tangent plane returns 0 after one dot product. A material without specular colour skips
+//! every Phong term (`raster::shade`).
+//!
+//! Cost of [`Scene::prepare`]: a few dozen f64 operations per light (no per-sample cost).
+
+use crate::illuminant::{mul_rgb, Ambient, DirectionalLight, Illuminant, PointLight};
+use crate::{PhongLobe, Real, Rgb, Vec3};
+use heapless::Vec as HVec;
+
+#[cfg(feature = "polygon")]
+use crate::PolygonLight;
+#[cfg(feature = "sh9")]
+use crate::Sh9Irradiance;
+#[cfg(feature = "shaping")]
+use crate::Uberlight;
+#[cfg(feature = "cap")]
+use crate::{CapLight, SphereLight};
+#[cfg(feature = "hemisphere")]
+use crate::{HemisphereLight, OvercastSky, SkyGround};
+
+/// One light of a [`Scene`]: the crate's lights whose families are enabled.
+#[derive(Clone, Debug, PartialEq)]
+#[allow(clippy::large_enum_variant)]
+pub enum SceneLight<T, const N: usize = 8> {
+    /// Constant ambient light.
+    Ambient(Ambient<T>),
+    /// A light at infinity in one direction.
+    Directional(DirectionalLight<T>),
+    /// A point light.
+    Point(PointLight<T>),
+    /// A constant hemisphere (`hemi_const`).
+    #[cfg(feature = "hemisphere")]
+    Hemisphere(HemisphereLight<T>),
+    /// The CIE overcast sky.
+    #[cfg(feature = "hemisphere")]
+    Overcast(OvercastSky<T>),
+    /// Sky/ground lighting.
+    #[cfg(feature = "hemisphere")]
+    SkyGround(SkyGround<T>),
+    /// A cap of directions (a distant disc).
+    #[cfg(feature = "cap")]
+    Cap(CapLight<T>),
+    /// A sphere light.
+    #[cfg(feature = "cap")]
+    Sphere(SphereLight<T>),
+    /// A polygon light.
+    #[cfg(feature = "polygon")]
+    Polygon(PolygonLight<T, N>),
+    /// An SH9 environment.
+    #[cfg(feature = "sh9")]
+    Sh9(Sh9Irradiance<T>),
+}
+
+/// What a light can reach, in f64, computed once when it is pushed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Reach {
+    /// Every normal (hemispheres, skies, ambient, SH).
+    Everywhere,
+    /// A light at infinity: directions within the angle `asin(sin_s)` of `dir`.
+    Direction { dir: [f64; 3], sin_s: f64 },
+    /// A light inside the sphere `(center, radius)`.
+    Bounded { center: [f64; 3], radius: f64 },
+}
+
+/// A shaped light's beam, in f64: where its factor can be non-zero.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Beam {
+    origin: [f64; 3],
+    dir: [f64; 3],
+    /// Half-angle of the cone circumscribing the outer rectangle `|x| < A z, |y| < B z`.
+    half_angle: f64,
+    /// The factor is 0 for `z` below this (`znear - near_edge`) ...
+    z_on: f64,
+    /// ... and above this (`zfar + far_edge`).
+    z_off: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct Entry<T, const N: usize> {
+    light: SceneLight<T, N>,
+    colour: Rgb<T>,
+    #[cfg(feature = "shaping")]
+    shape: Option<Uberlight<T>>,
+    reach: Reach,
+    beam: Option<Beam>,
+}
+
+/// Why [`Scene::push`] refused a light; the light comes back in either case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PushError<T, const N: usize = 8> {
+    /// The scene already holds its capacity `L` of lights.
+    Full(SceneLight<T, N>),
+    /// The colour has a NaN or infinite channel.
+    NotFinite(SceneLight<T, N>),
+}
+
+/// Where an object is, for [`Scene::prepare`]: a bounding sphere of its points and, optionally,
+/// a cone containing all its (unit) normals.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectBounds {
+    center: [f64; 3],
+    radius: f64,
+    /// Unit axis and half-angle of the normal cone (`None`: any normal).
+    normals: Option<([f64; 3], f64)>,
+}
+
+impl ObjectBounds {
+    /// An object inside the sphere `(center, radius)`, normals unconstrained.
+    ///
+    /// # Errors
+    /// [`crate::Error::NotFinite`] (`"center"`, `"radius"`), [`crate::Error::Negative`]
+    /// (`"radius"`).
+    pub fn sphere<T: Real>(center: Vec3<T>, radius: T) -> Result<Self, crate::Error> {
+        let c = center.to_f64();
+        let r = radius.to_f64();
+        if !c.iter().all(|x| x.is_finite()) {
+            return Err(crate::Error::NotFinite("center"));
+        }
+        if !r.is_finite() {
+            return Err(crate::Error::NotFinite("radius"));
+        }
+        if !(r >= 0.0) {
+            return Err(crate::Error::Negative("radius"));
+        }
+        Ok(ObjectBounds {
+            center: c,
+            radius: r,
+            normals: None,
+        })
+    }
+
+    /// Restricts the normals to the cone of `axis` (any length) and `half_angle` in [0, pi]
+    /// (a plane facing up: `(up, 0)`; a convex object: no cone).
+    ///
+    /// # Errors
+    /// [`crate::Error::NotFinite`] / [`crate::Error::ZeroLength`] (`"axis"`),
+    /// [`crate::Error::AlphaOutOfRange`] for a half-angle outside [0, pi].
+    pub fn with_normal_cone<T: Real>(
+        mut self,
+        axis: Vec3<T>,
+        half_angle: T,
+    ) -> Result<Self, crate::Error> {
+        let a = unit(axis.to_f64()).ok_or(if axis.is_finite() {
+            crate::Error::ZeroLength("axis")
+        } else {
+            crate::Error::NotFinite("axis")
+        })?;
+        let t = half_angle.to_f64();
+        if !(0.0..=core::f64::consts::PI).contains(&t) {
+            return Err(crate::Error::AlphaOutOfRange);
+        }
+        self.normals = Some((a, t));
+        Ok(self)
+    }
+}
+
+/// A set of up to `L` lights (polygons of up to `N` vertices): see the module docs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene<T, const L: usize, const N: usize = 8> {
+    entries: HVec<Entry<T, N>, L>,
+}
+
+impl<T: Real, const L: usize, const N: usize> Default for Scene<T, L, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Real, const L: usize, const N: usize> Scene<T, L, N> {
+    /// An empty scene.
+    pub const fn new() -> Self {
+        Scene {
+            entries: HVec::new(),
+        }
+    }
+
+    /// The number of lights.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// `true` for a scene without lights.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// Adds `light` with `colour` (per-channel radiance scale); returns its index.
+    ///
+    /// # Errors
+    /// [`PushError::Full`] when the scene holds `L` lights, [`PushError::NotFinite`] for a
+    /// colour with a NaN or infinite channel; both hand the light back.
+    pub fn push(
+        &mut self,
+        light: SceneLight<T, N>,
+        colour: Rgb<T>,
+    ) -> Result<usize, PushError<T, N>> {
+        self.push_entry(light, colour, None)
+    }
+
+    /// Adds `light` shaped by the uberlight `shape` (both its terms are multiplied by
+    /// [`Uberlight::factor`]); returns its index.
+    ///
+    /// # Errors
+    /// As [`Scene::push`].
+    #[cfg(feature = "shaping")]
+    pub fn push_shaped(
+        &mut self,
+        light: SceneLight<T, N>,
+        colour: Rgb<T>,
+        shape: Uberlight<T>,
+    ) -> Result<usize, PushError<T, N>> {
+        self.push_entry(light, colour, Some(shape))
+    }
+
+    #[cfg(feature = "shaping")]
+    fn push_entry(
+        &mut self,
+        light: SceneLight<T, N>,
+        colour: Rgb<T>,
+        shape: Option<Uberlight<T>>,
+    ) -> Result<usize, PushError<T, N>> {
+        let beam = shape.as_ref().map(beam_of);
+        self.insert(light, colour, beam, shape)
+    }
+
+    #[cfg(not(feature = "shaping"))]
+    fn push_entry(
+        &mut self,
+        light: SceneLight<T, N>,
+        colour: Rgb<T>,
+        _shape: Option<()>,
+    ) -> Result<usize, PushError<T, N>> {
+        self.insert(light, colour, None, ())
+    }
+
+    fn insert(
+        &mut self,
+        light: SceneLight<T, N>,
+        colour: Rgb<T>,
+        beam: Option<Beam>,
+        #[cfg(feature = "shaping")] shape: Option<Uberlight<T>>,
+        #[cfg(not(feature = "shaping"))] _shape: (),
+    ) -> Result<usize, PushError<T, N>> {
+        if !(colour.r.is_finite() && colour.g.is_finite() && colour.b.is_finite()) {
+            return Err(PushError::NotFinite(light));
+        }
+        if self.entries.is_full() {
+            return Err(PushError::Full(light));
+        }
+        let reach = reach_of(&light);
+        let entry = Entry {
+            light,
+            colour,
+            #[cfg(feature = "shaping")]
+            shape,
+            reach,
+            beam,
+        };
+        match self.entries.push(entry) {
+            Ok(()) => Ok(self.entries.len() - 1),
+            Err(e) => Err(PushError::Full(e.light)),
+        }
+    }
+
+    /// The lights that can reach `object` (see the module docs for the tests): a view of the
+    /// scene that shades exactly as the whole scene does for every point and normal of the
+    /// object, at the cost of the kept lights only. `specular`: whether the object's material
+    /// has a Phong term (then lights below its horizons are kept: see the module docs).
+    ///
+    /// Cost: a few dozen f64 operations per light, once per object.
+    pub fn prepare(&self, object: &ObjectBounds, specular: bool) -> PreparedScene<'_, T, L, N> {
+        let mut active = HVec::new();
+        for (i, e) in self.entries.iter().enumerate() {
+            let beam_ok = e.beam.as_ref().is_none_or(|b| beam_reaches(b, object));
+            let horizon_ok = specular || horizon_reaches(&e.reach, object);
+            if beam_ok && horizon_ok {
+                // Cannot fail: at most L entries.
+                let _ = active.push(i as u16);
+            }
+        }
+        PreparedScene {
+            scene: self,
+            active,
+        }
+    }
+}
+
+/// The lights of a [`Scene`] that can reach one object ([`Scene::prepare`]).
+#[derive(Clone, Debug)]
+pub struct PreparedScene<'a, T, const L: usize, const N: usize = 8> {
+    scene: &'a Scene<T, L, N>,
+    active: HVec<u16, L>,
+}
+
+impl<T: Real, const L: usize, const N: usize> PreparedScene<'_, T, L, N> {
+    /// The number of lights kept.
+    pub fn active(&self) -> usize {
+        self.active.len()
+    }
+    /// The indices (push order) of the lights kept.
+    pub fn active_indices(&self) -> &[u16] {
+        &self.active
+    }
+}
+
+impl<T: Real, const L: usize, const N: usize> Illuminant<T> for Scene<T, L, N> {
+    /// The sum of every light's diffuse term (with the early exits of the module docs).
+    #[inline]
+    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        self.entries
+            .iter()
+            .fold(Rgb::splat(T::ZERO), |acc, e| acc.add(e.diffuse(p, n)))
+    }
+    /// The sum of every light's Phong term.
+    #[inline]
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        self.entries
+            .iter()
+            .fold(Rgb::splat(T::ZERO), |acc, e| acc.add(e.phong(lobe, p, r)))
+    }
+}
+
+impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_, T, L, N> {
+    /// The sum of the kept lights' diffuse terms, in push order (so the sum rounds exactly as
+    /// the whole scene's, whose other lights contribute exactly 0 here).
+    #[inline]
+    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        let e = &self.scene.entries;
+        self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
+            acc.add(e[i as usize].diffuse(p, n))
+        })
+    }
+    /// The sum of the kept lights' Phong terms, in push order.
+    #[inline]
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        let e = &self.scene.entries;
+        self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
+            acc.add(e[i as usize].phong(lobe, p, r))
+        })
+    }
+}
+
+impl<T: Real, const N: usize> Entry<T, N> {
+    /// The beam factor at `p` (1 for an unshaped light).
+    #[inline(always)]
+    fn factor(&self, p: Vec3<T>) -> T {
+        #[cfg(feature = "shaping")]
+        if let Some(s) = &self.shape {
+            return s.factor(p);
+        }
+        let _ = p;
+        T::ONE
+    }
+
+    #[inline]
+    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        let f = self.factor(p);
+        if !(f > T::ZERO) {
+            return Rgb::splat(T::ZERO);
+        }
+        let v = match &self.light {
+            SceneLight::Ambient(l) => Illuminant::diffuse(l, p, n),
+            SceneLight::Directional(l) => Illuminant::diffuse(l, p, n),
+            SceneLight::Point(l) => Illuminant::diffuse(l, p, n),
+            #[cfg(feature = "hemisphere")]
+            SceneLight::Hemisphere(l) => Illuminant::diffuse(l, p, n),
+            #[cfg(feature = "hemisphere")]
+            SceneLight::Overcast(l) => Illuminant::diffuse(l, p, n),
+            #[cfg(feature = "hemisphere")]
+            SceneLight::SkyGround(l) => Illuminant::diffuse(l, p, n),
+            #[cfg(feature = "cap")]
+            SceneLight::Cap(l) => {
+                // Wholly below the horizon: n.axis < -sin sigma (n unit).
+                let (_, ss) = cap_cos_sin(l);
+                if n.dot(l.axis()) < -ss {
+                    return Rgb::splat(T::ZERO);
+                }
+                Illuminant::diffuse(l, p, n)
+            }
+            #[cfg(feature = "cap")]
+            SceneLight::Sphere(l) => Illuminant::diffuse(l, p, n),
+            #[cfg(feature = "polygon")]
+            SceneLight::Polygon(l) => Illuminant::diffuse(l, p, n),
+            #[cfg(feature = "sh9")]
+            SceneLight::Sh9(l) => Illuminant::diffuse(l, p, n),
+        };
+        mul_rgb(v, self.colour).scale(f)
+    }
+
+    #[inline]
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        let f = self.factor(p);
+        if !(f > T::ZERO) {
+            return Rgb::splat(T::ZERO);
+        }
+        let v = match &self.light {
+            SceneLight::Ambient(l) => Illuminant::phong(l, lobe, p, r),
+            SceneLight::Directional(l) => Illuminant::phong(l, lobe, p, r),
+            SceneLight::Point(l) => Illuminant::phong(l, lobe, p, r),
+            #[cfg(feature = "hemisphere")]
+            SceneLight::Hemisphere(l) => Illuminant::phong(l, lobe, p, r),
+            #[cfg(feature = "hemisphere")]
+            SceneLight::Overcast(l) => Illuminant::phong(l, lobe, p, r),
+            #[cfg(feature = "hemisphere")]
+            SceneLight::SkyGround(l) => Illuminant::phong(l, lobe, p, r),
+            #[cfg(feature = "cap")]
+            SceneLight::Cap(l) => {
+                // The lobe ((u.r)+)^m vanishes on the whole cap: r.axis <= -sin sigma.
+                let (_, ss) = cap_cos_sin(l);
+                if !(r.dot(l.axis()) > -ss) {
+                    return Rgb::splat(T::ZERO);
+                }
+                Illuminant::phong(l, lobe, p, r)
+            }
+            #[cfg(feature = "cap")]
+            SceneLight::Sphere(l) => Illuminant::phong(l, lobe, p, r),
+            #[cfg(feature = "polygon")]
+            SceneLight::Polygon(l) => Illuminant::phong(l, lobe, p, r),
+            #[cfg(feature = "sh9")]
+            SceneLight::Sh9(l) => Illuminant::phong(l, lobe, p, r),
+        };
+        mul_rgb(v, self.colour).scale(f)
+    }
+}
+
+#[cfg(feature = "cap")]
+#[inline(always)]
+fn cap_cos_sin<T: Real>(l: &CapLight<T>) -> (T, T) {
+    l.cos_sin_sigma()
+}
+
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let l = libm::sqrt(dot(v, v));
+    if l > 0.0 && l.is_finite() {
+        Some([v[0] / l, v[1] / l, v[2] / l])
+    } else {
+        None
+    }
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// The angle between two unit vectors, accurate at both ends.
+fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let c = [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ];
+    libm::atan2(libm::sqrt(dot(c, c)), dot(a, b))
+}
+
+fn reach_of<T: Real, const N: usize>(light: &SceneLight<T, N>) -> Reach {
+    match light {
+        SceneLight::Ambient(_) => Reach::Everywhere,
+        SceneLight::Directional(l) => Reach::Direction {
+            dir: l.direction().to_f64(),
+            sin_s: 0.0,
+        },
+        SceneLight::Point(l) => Reach::Bounded {
+            center: l.position().to_f64(),
+            radius: 0.0,
+        },
+        #[cfg(feature = "hemisphere")]
+        SceneLight::Hemisphere(_) | SceneLight::Overcast(_) | SceneLight::SkyGround(_) => {
+            Reach::Everywhere
+        }
+        #[cfg(feature = "cap")]
+        SceneLight::Cap(l) => Reach::Direction {
+            dir: l.axis().to_f64(),
+            sin_s: libm::sin(l.sigma().to_f64()),
+        },
+        #[cfg(feature = "cap")]
+        SceneLight::Sphere(l) => Reach::Bounded {
+            center: l.center().to_f64(),
+            radius: l.radius().to_f64(),
+        },
+        #[cfg(feature = "polygon")]
+        SceneLight::Polygon(l) => {
+            let vs = l.vertices();
+            let mut c = [0.0; 3];
+            for v in vs {
+                let v = v.to_f64();
+                for k in 0..3 {
+                    c[k] += v[k] / vs.len() as f64;
+                }
+            }
+            let r = vs.iter().fold(0.0f64, |m, v| {
+                let d = sub(v.to_f64(), c);
+                m.max(libm::sqrt(dot(d, d)))
+            });
+            Reach::Bounded {
+                center: c,
+                radius: r,
+            }
+        }
+        #[cfg(feature = "sh9")]
+        SceneLight::Sh9(_) => Reach::Everywhere,
+    }
+}
+
+#[cfg(feature = "shaping")]
+fn beam_of<T: Real>(u: &Uberlight<T>) -> Beam {
+    let [_, _, big_a, big_b, _] = u.shape.params().map(|x| x.to_f64());
+    let [_, _, _, znear, zfar, near_edge, far_edge] = u.falloff.params().map(|x| x.to_f64());
+    Beam {
+        origin: u.frame.origin().to_f64(),
+        dir: unit(u.frame.direction().to_f64()).unwrap_or([0.0, 0.0, 1.0]),
+        half_angle: libm::atan(libm::hypot(big_a, big_b)),
+        z_on: znear - near_edge,
+        z_off: zfar + far_edge,
+    }
+}
+
+/// Relative margin of every culling test: far above the rounding of the per-sample
+/// arithmetic in any backend (f32: 6e-8; Fixed22: 2^-22 of a coordinate <= 4).
+const MARGIN: f64 = 1e-4;
+
+fn beam_reaches(b: &Beam, o: &ObjectBounds) -> bool {
+    let d = sub(o.center, b.origin);
+    let dist = libm::sqrt(dot(d, d));
+    let slack = MARGIN * (dist + o.radius) + MARGIN;
+    let z = dot(d, b.dir);
+    if z + o.radius < b.z_on - slack || z - o.radius > b.z_off + slack {
+        return false;
+    }
+    if dist <= o.radius + slack {
+        return true;
+    }
+    // Outside the cone: the angle to the object's centre minus its angular radius.
+    let phi = angle([d[0] / dist, d[1] / dist, d[2] / dist], b.dir);
+    let spread = libm::asin((o.radius / dist).min(1.0));
+    phi - spread <= b.half_angle + MARGIN
+}
+
+fn horizon_reaches(r: &Reach, o: &ObjectBounds) -> bool {
+    let Some((axis, half)) = o.normals else {
+        return true;
+    };
+    match *r {
+        Reach::Everywhere => true,
+        Reach::Direction { dir, sin_s } => {
+            let phi = angle(dir, axis);
+            libm::cos((phi - half).max(0.0)) > -sin_s - MARGIN
+        }
+        Reach::Bounded { center, radius } => {
+            let d = sub(center, o.center);
+            let dist = libm::sqrt(dot(d, d));
+            let slack = MARGIN * (dist + radius + o.radius);
+            if dist <= radius + o.radius + slack {
+                return true;
+            }
+            let phi = angle([d[0] / dist, d[1] / dist, d[2] / dist], axis);
+            dist * libm::cos((phi - half).max(0.0)) + radius + o.radius > -slack
+        }
+    }
+}

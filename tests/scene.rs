@@ -1,0 +1,262 @@
+//! Scenes (issue 7): culling drops exactly the lights that cannot reach an object, and a
+//! prepared scene shades bit-identically to the whole scene at every point and normal of the
+//! object, on every backend.
+
+mod common;
+
+use arealight::{
+    DirectionalLight, DistanceFalloff, Fixed22, Illuminant, LightFrame, ObjectBounds, PhongLobe,
+    PointLight, PolygonLight, PushError, Real, Rgb, Scene, SceneLight, SphereLight, Superellipse,
+    Uberlight, Vec3,
+};
+use common::*;
+
+fn v3<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
+    Vec3::from_f64([x, y, z])
+}
+
+/// A spot (uberlight) at `origin` pointing along `dir`, its beam cut off beyond `zfar`.
+fn spot<T: Real>(origin: Vec3<T>, dir: Vec3<T>, zfar: f64) -> Uberlight<T> {
+    let up = if dir.to_f64()[2].abs() < 0.9 {
+        v3(0.0, 0.0, 1.0)
+    } else {
+        v3(1.0, 0.0, 0.0)
+    };
+    let c = T::from_f64;
+    Uberlight::new(
+        LightFrame::new(origin, dir, up).unwrap(),
+        Superellipse::new(c(0.3), c(0.3), c(0.5), c(0.5), c(0.5)).unwrap(),
+        DistanceFalloff::new(c(2.0), c(1.0), c(1.0), c(0.2), c(zfar), c(0.1), c(0.5)).unwrap(),
+    )
+}
+
+/// The issue's benchmark configuration: 16 lights around a unit-radius object at the origin,
+/// of which 2 can reach it (a sphere light and a polygon light); 7 spots point away from it
+/// and 7 point at it but are cut off before it. Coordinates within [-4, 4] (fixed point).
+pub fn sixteen_lights<T: Real>() -> Scene<T, 16> {
+    let mut s = Scene::new();
+    let white = Rgb::splat(T::ONE);
+    s.push(
+        SceneLight::Sphere(SphereLight::new(v3(0.0, 2.0, 2.0), T::from_f64(0.3)).unwrap()),
+        white,
+    )
+    .unwrap();
+    let quad = [
+        v3(-0.5, -0.5, 2.5),
+        v3(0.5, -0.5, 2.5),
+        v3(0.5, 0.5, 2.5),
+        v3(-0.5, 0.5, 2.5),
+    ];
+    s.push(
+        SceneLight::Polygon(PolygonLight::new(&quad).unwrap()),
+        Rgb::from_f64([1.0, 0.8, 0.6]),
+    )
+    .unwrap();
+    for i in 0..14 {
+        let a = i as f64 * 0.45;
+        let (ca, sa) = (a.cos(), a.sin());
+        let origin = v3::<T>(3.0 * ca, 3.0 * sa, 1.0);
+        let light = SceneLight::Point(PointLight::new(origin).unwrap());
+        let shape = if i % 2 == 0 {
+            // Pointing away from the object.
+            spot(origin, v3(ca, sa, 0.0), 3.0)
+        } else {
+            // Pointing at it, cut off at z = 1 + 0.5 < 3.16 - 1.
+            spot(origin, v3(-ca, -sa, -1.0 / 3.0), 1.0)
+        };
+        s.push_shaped(light, white, shape).unwrap();
+    }
+    s
+}
+
+macro_rules! scene_tests {
+    ($name:ident, $T:ty) => {
+        mod $name {
+            use super::*;
+            type T = $T;
+
+            /// Samples of the object: points in its bounding sphere, any unit normal, any
+            /// unit reflection direction.
+            fn samples(rng: &mut Rng, count: usize, up_only: bool) -> Vec<(V3, V3, V3)> {
+                (0..count)
+                    .map(|_| {
+                        let p = scale(rng.dir(), rng.unit().cbrt());
+                        let mut n = rng.dir();
+                        if up_only {
+                            n = [0.0, 0.0, 1.0];
+                        }
+                        (p, n, rng.dir())
+                    })
+                    .collect()
+            }
+
+            fn assert_same<L1: Illuminant<T>, L2: Illuminant<T>>(
+                a: &L1,
+                b: &L2,
+                cases: &[(V3, V3, V3)],
+            ) {
+                let lobe = PhongLobe::<T>::new(16).unwrap();
+                for &(p, n, r) in cases {
+                    let (p, n, r) = (v::<T>(p), v::<T>(n), v::<T>(r));
+                    assert_eq!(a.diffuse(p, n).to_f64(), b.diffuse(p, n).to_f64());
+                    assert_eq!(a.phong(&lobe, p, r).to_f64(), b.phong(&lobe, p, r).to_f64());
+                }
+            }
+
+            #[test]
+            fn sixteen_lights_prepare_to_two_and_shade_identically() {
+                let scene = sixteen_lights::<T>();
+                assert_eq!(scene.len(), 16);
+                let object = ObjectBounds::sphere(v3::<T>(0.0, 0.0, 0.0), T::ONE).unwrap();
+                for specular in [false, true] {
+                    let prepared = scene.prepare(&object, specular);
+                    assert_eq!(prepared.active_indices(), &[0, 1], "specular {specular}");
+                }
+                let prepared = scene.prepare(&object, true);
+                let mut rng = Rng::new(0x5ce);
+                let cases = samples(&mut rng, 20_000, false);
+                assert_same(&scene, &prepared, &cases);
+                // And the kept lights do light the object.
+                let lit = cases
+                    .iter()
+                    .any(|&(p, n, _)| prepared.diffuse(v::<T>(p), v::<T>(n)).to_f64()[0] > 0.01);
+                assert!(lit);
+            }
+
+            #[test]
+            fn lights_below_a_matte_floor_are_culled_only_without_specular() {
+                let mut scene: Scene<T, 8> = Scene::new();
+                let white = Rgb::splat(T::ONE);
+                // Above the floor z = 0 (reach it) ...
+                scene
+                    .push(
+                        SceneLight::Point(PointLight::new(v3(0.0, 0.0, 2.0)).unwrap()),
+                        white,
+                    )
+                    .unwrap();
+                scene
+                    .push(
+                        SceneLight::Directional(DirectionalLight::new(v3(0.2, 0.1, 1.0)).unwrap()),
+                        white,
+                    )
+                    .unwrap();
+                // ... and below it (cannot, for the diffuse term).
+                scene
+                    .push(
+                        SceneLight::Sphere(
+                            SphereLight::new(v3(0.5, 0.0, -2.0), T::from_f64(0.5)).unwrap(),
+                        ),
+                        white,
+                    )
+                    .unwrap();
+                let below = [
+                    v3(-0.5, -0.5, -2.5),
+                    v3(0.5, -0.5, -2.5),
+                    v3(0.0, 0.5, -2.5),
+                ];
+                scene
+                    .push(
+                        SceneLight::Polygon(PolygonLight::new(&below).unwrap()),
+                        white,
+                    )
+                    .unwrap();
+                scene
+                    .push(
+                        SceneLight::Directional(DirectionalLight::new(v3(0.0, 0.3, -1.0)).unwrap()),
+                        white,
+                    )
+                    .unwrap();
+                // The floor: a disc of radius 1 at z = 0 facing up.
+                let floor = ObjectBounds::sphere(v3::<T>(0.0, 0.0, 0.0), T::ONE)
+                    .unwrap()
+                    .with_normal_cone(v3::<T>(0.0, 0.0, 1.0), T::ZERO)
+                    .unwrap();
+                let matte = scene.prepare(&floor, false);
+                assert_eq!(matte.active_indices(), &[0, 1]);
+                let glossy = scene.prepare(&floor, true);
+                assert_eq!(glossy.active(), 5);
+                let mut rng = Rng::new(0xf100);
+                let cases: Vec<_> = samples(&mut rng, 20_000, true)
+                    .into_iter()
+                    .map(|(p, n, r)| ([p[0], p[1], 0.0], n, r))
+                    .collect();
+                // The matte view equals the whole scene in its diffuse term.
+                for &(p, n, _) in &cases {
+                    let (p, n) = (v::<T>(p), v::<T>(n));
+                    assert_eq!(scene.diffuse(p, n).to_f64(), matte.diffuse(p, n).to_f64());
+                }
+                assert_same(&scene, &glossy, &cases);
+            }
+
+            #[test]
+            fn a_full_scene_hands_the_light_back() {
+                let mut scene: Scene<T, 2> = Scene::new();
+                let l = || SceneLight::Point(PointLight::new(v3::<T>(0.0, 0.0, 1.0)).unwrap());
+                assert_eq!(scene.push(l(), Rgb::splat(T::ONE)), Ok(0));
+                assert_eq!(scene.push(l(), Rgb::splat(T::ONE)), Ok(1));
+                assert_eq!(
+                    scene.push(l(), Rgb::splat(T::ONE)),
+                    Err(PushError::Full(l()))
+                );
+                assert_eq!(scene.len(), 2);
+            }
+        }
+    };
+}
+
+scene_tests!(f64_scene, f64);
+scene_tests!(f32_scene, f32);
+scene_tests!(fixed_scene, Fixed22);
+
+#[test]
+fn non_finite_colour_is_refused() {
+    let mut scene: Scene<f32, 2> = Scene::new();
+    let l = SceneLight::Point(PointLight::new(v3::<f32>(0.0, 0.0, 1.0)).unwrap());
+    assert_eq!(
+        scene.push(l.clone(), Rgb::new(f32::NAN, 0.0, 0.0)),
+        Err(PushError::NotFinite(l))
+    );
+    assert!(scene.is_empty());
+}
+
+/// Random configurations: a culled light's own contribution is exactly 0 at every sample
+/// (the conservative side of every test), for random spots and objects.
+#[test]
+fn culled_lights_contribute_exactly_zero() {
+    let mut rng = Rng::new(0xc011);
+    let lobe = PhongLobe::<f32>::new(8).unwrap();
+    let mut culled = 0;
+    for _ in 0..400 {
+        let o = [
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ];
+        let radius = rng.range(0.05, 1.0);
+        let object = ObjectBounds::sphere(v::<f32>(o), radius as f32).unwrap();
+        let origin = [
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+            rng.range(-3.0, 3.0),
+        ];
+        let dir = rng.dir();
+        let zfar = rng.range(0.3, 4.0);
+        let mut scene: Scene<f32, 1> = Scene::new();
+        let light = SceneLight::Sphere(SphereLight::new(v::<f32>(origin), 0.1).unwrap());
+        scene
+            .push_shaped(light, Rgb::splat(1.0), spot(v(origin), v(dir), zfar))
+            .unwrap();
+        if scene.prepare(&object, true).active() == 1 {
+            continue;
+        }
+        culled += 1;
+        for _ in 0..200 {
+            let p = add(o, scale(rng.dir(), radius * rng.unit().cbrt()));
+            let (p, n, r) = (v::<f32>(p), v::<f32>(rng.dir()), v::<f32>(rng.dir()));
+            assert_eq!(scene.diffuse(p, n).to_f64(), [0.0; 3]);
+            assert_eq!(scene.phong(&lobe, p, r).to_f64(), [0.0; 3]);
+        }
+    }
+    println!("culled {culled} of 400 random spot/object configurations");
+    assert!(culled > 50);
+}
