@@ -6,7 +6,7 @@
 //! come from the QEMU instruction counter (boards/), not from here.
 
 use arealight::{
-    CapLight, Fast32, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb, Sh9,
+    CapLight, Fast32, Fixed22, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb, Sh9,
     SkyGround, SphereLight, Vec3,
 };
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -78,6 +78,14 @@ fn bench_backend<T: Real>(c: &mut Criterion, name: &str) {
         per_normal!(format!("phong_sphere/m={m}"), |r| sphere.phong(lobe, p, r));
         per_normal!(format!("phong_polygon/m={m}"), |r| poly.phong(lobe, p, r));
     }
+    // Arvo's moments, full sum against early termination (eq. 21) at two tolerances.
+    for m in [8u32, 64] {
+        per_normal!(format!("axial_moment/m={m}"), |w| poly.axial_moment(p, w, m));
+        for tol in [1e-6, 1e-3] {
+            per_normal!(format!("axial_moment_within/m={m}/tol={tol:e}"), |w| poly
+                .axial_moment_within(p, w, m, T::from_f64(tol)));
+        }
+    }
     g.finish();
 }
 
@@ -85,6 +93,7 @@ fn benches(c: &mut Criterion) {
     bench_backend::<f64>(c, "f64");
     bench_backend::<f32>(c, "f32");
     bench_backend::<Fast32>(c, "f32-fast");
+    bench_backend::<Fixed22>(c, "fixed");
 }
 
 criterion_group! {
