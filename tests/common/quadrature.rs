@@ -341,6 +341,36 @@ pub fn two_cap_integral<F: Fn(V3) -> f64>(
     tol: f64,
     q: &Quad,
 ) -> f64 {
+    two_cap_integral_cuts(c, theta_max, d, rho, f, tol, q, &[])
+}
+
+/// The panel ends a sharp lobe `(cos theta)^m` about the polar axis needs: `theta = j/sqrt(m)`
+/// for `j` in {1/4, 1/2, 1, 2, 4, 8, 16} (the lobe's half-width is about `1/sqrt(m)`), so every
+/// panel near the peak is narrower than the lobe whatever the adaptive rule's first estimate.
+/// Empty for `m < 16`.
+pub fn lobe_cuts(m: u32) -> Vec<f64> {
+    if m < 16 {
+        return Vec::new();
+    }
+    let w = 1.0 / (m as f64).sqrt();
+    [0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0]
+        .iter()
+        .map(|j| j * w)
+        .filter(|&t| t < FRAC_PI_2)
+        .collect()
+}
+
+/// [`two_cap_integral`] with extra panel ends `extra` (angles from `c`) in the `theta` range.
+pub fn two_cap_integral_cuts<F: Fn(V3) -> f64>(
+    c: V3,
+    theta_max: f64,
+    d: V3,
+    rho: f64,
+    f: F,
+    tol: f64,
+    q: &Quad,
+    extra: &[f64],
+) -> f64 {
     let c = normalize(c);
     let d = normalize(d);
     let w = angle(c, d);
@@ -356,7 +386,10 @@ pub fn two_cap_integral<F: Fn(V3) -> f64>(
         return 0.0;
     }
     let mut cuts = vec![0.0, theta_max];
-    for b in [(w - rho).abs(), w + rho, TAU - w - rho] {
+    for &b in [(w - rho).abs(), w + rho, TAU - w - rho]
+        .iter()
+        .chain(extra)
+    {
         if b > 1e-15 && b < theta_max - 1e-15 {
             cuts.push(b);
         }
@@ -444,6 +477,33 @@ pub fn cap_weighted(
         Frame::AboutWeight => two_cap_integral(k, FRAC_PI_2, a, sigma, f, tol, q),
         Frame::AboutSource => two_cap_integral(a, sigma, k, FRAC_PI_2, f, tol, q),
     }
+}
+
+/// [`cap_weighted`] about the weight axis with the panel ends of [`lobe_cuts`] added: the
+/// reference for sharp lobes (m up to 1001, `tests/large_exponents.rs`).
+pub fn cap_weighted_sharp(
+    axis: V3,
+    sigma: f64,
+    rad: Radiance,
+    k: V3,
+    m: u32,
+    tol: f64,
+    q: &Quad,
+) -> f64 {
+    let a = normalize(axis);
+    let k = normalize(k);
+    let f = |u: V3| {
+        let uk = dot(u, k).max(0.0);
+        rad.eval(dot(u, a)) * uk.powi(m as i32)
+    };
+    two_cap_integral_cuts(k, FRAC_PI_2, a, sigma, f, tol, q, &lobe_cuts(m))
+}
+
+/// [`phong_cap_source`] with the lobe's panel ends ([`cap_weighted_sharp`]); `sigma` may
+/// exceed pi/2 (up to pi) for self-checks.
+pub fn phong_cap_source_sharp(axis: V3, sigma: f64, rad: Radiance, r: V3, m: u32, q: &Quad) -> f64 {
+    let norm = (m as f64 + 1.0) / TAU;
+    cap_weighted_sharp(axis, sigma, rad, r, m, q.tol / norm, q) * norm
 }
 
 /// Lambert, normalized: `(1/pi) integral L (n.u)+ du` over the cap source.
@@ -757,6 +817,19 @@ pub fn polygon_by_circles<W: Fn(f64) -> f64>(
     tol: f64,
     q: &Quad,
 ) -> f64 {
+    polygon_by_circles_cuts(verts, p, k, w, tol, q, &[])
+}
+
+/// [`polygon_by_circles`] with extra panel ends `extra` (angles from `k`) in the `theta` range.
+pub fn polygon_by_circles_cuts<W: Fn(f64) -> f64>(
+    verts: &[V3],
+    p: V3,
+    k: V3,
+    w: W,
+    tol: f64,
+    q: &Quad,
+    extra: &[f64],
+) -> f64 {
     let k = normalize(k);
     let nn = normalize(newell(verts));
     let h_signed = verts.iter().map(|&v| dot(sub(v, p), nn)).sum::<f64>() / verts.len() as f64;
@@ -854,6 +927,7 @@ pub fn polygon_by_circles<W: Fn(f64) -> f64>(
         }
         total
     };
+    cuts.extend_from_slice(extra);
     cuts.retain(|&c| (0.0..=FRAC_PI_2).contains(&c));
     cuts.sort_by(|x, y| x.partial_cmp(y).unwrap());
     cuts.dedup_by(|x, y| (*x - *y).abs() < 1e-15);
@@ -883,6 +957,13 @@ pub fn polygon_lambert(verts: &[V3], p: V3, n: V3, q: &Quad) -> f64 {
 pub fn phong_polygon(verts: &[V3], p: V3, r: V3, m: u32, q: &Quad) -> f64 {
     let norm = (m as f64 + 1.0) / TAU;
     polygon_by_circles(verts, p, r, |c| c.powi(m as i32), q.tol / norm, q) * norm
+}
+
+/// [`phong_polygon`] with the lobe's panel ends ([`lobe_cuts`]): the reference for sharp lobes.
+pub fn phong_polygon_sharp(verts: &[V3], p: V3, r: V3, m: u32, q: &Quad) -> f64 {
+    let norm = (m as f64 + 1.0) / TAU;
+    let w = |c: f64| c.powi(m as i32);
+    polygon_by_circles_cuts(verts, p, r, w, q.tol / norm, q, &lobe_cuts(m)) * norm
 }
 
 /// `[polygon_lambert]` by the fan method ([`polygon_integral`]), for cross-checks.

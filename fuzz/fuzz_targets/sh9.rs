@@ -1,0 +1,11 @@
+//! cargo-fuzz target: every constructor and per-sample function of the `sh9` family on
+//! arbitrary f32 bit patterns (tests/fuzzing/mod.rs), f64, f32 and Fast32.
+#![no_main]
+use libfuzzer_sys::fuzz_target;
+
+#[path = "../../tests/fuzzing/mod.rs"]
+mod fuzzing;
+
+fuzz_target!(|data: &[u8]| {
+    fuzzing::run(fuzzing::Family::Sh9, data);
+});
