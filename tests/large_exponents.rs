@@ -15,7 +15,9 @@
 
 mod common;
 
-use arealight::{CapLight, Fast32, HemisphereLight, PhongLobe, PolygonLight, Real, SphereLight};
+use arealight::{
+    CapLight, Fast32, Fixed22, HemisphereLight, PhongLobe, PolygonLight, Real, SphereLight,
+};
 use common::quadrature::{self as qd, Radiance};
 use common::*;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -442,6 +444,9 @@ struct Row {
     f32q_ill: f64,
     fastq: f64,
     f32_f64: f64,
+    /// Fixed22 vs quadrature (m <= 255, cases inside its coordinate range).
+    fixq: f64,
+    n_fix: usize,
     n: usize,
     n_ill: usize,
     worst_f32: String,
@@ -501,6 +506,20 @@ fn large_exponent_table() {
             };
             upd(&mut row.fastq, efast);
             upd(&mut row.f32_f64, abs_err(a32, a64));
+            // The fixed-point path, up to its exponent limit, where its coordinate range holds
+            // the case (it refuses the others); bound 1/1024.
+            if m <= 255 {
+                if let Some(afix) = c.eval::<Fixed22>(m) {
+                    row.n_fix += 1;
+                    let efix = abs_err(afix, want);
+                    upd(&mut row.fixq, efix);
+                    if !(efix <= 1.0 / 1024.0) {
+                        failures.push(format!(
+                            "Fixed22 m={m} err {efix:.3e}: {c:?} got {afix:e} want {want:e}"
+                        ));
+                    }
+                }
+            }
             if !(e64 <= TOL_F64_LARGE) {
                 failures.push(format!(
                     "f64 m={m} err {e64:.3e}: {c:?} got {a64:e} want {want:e}"
@@ -521,12 +540,24 @@ fn large_exponent_table() {
     }
     println!(
         "[table] model | m | cases (ill-cond.) | f64 vs quad | f32 vs quad | f32 ill-cond. | \
-         Fast32 vs quad | f32 vs f64"
+         Fast32 vs quad | f32 vs f64 | Fixed22 vs quad (cases)"
     );
     for ((mi, m), r) in &rows {
         println!(
-            "[table] {} | {m} | {} ({}) | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.2e}",
-            models[*mi], r.n, r.n_ill, r.f64q, r.f32q, r.f32q_ill, r.fastq, r.f32_f64
+            "[table] {} | {m} | {} ({}) | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {:.2e} | {}",
+            models[*mi],
+            r.n,
+            r.n_ill,
+            r.f64q,
+            r.f32q,
+            r.f32q_ill,
+            r.fastq,
+            r.f32_f64,
+            if r.n_fix > 0 {
+                format!("{:.2e} ({})", r.fixq, r.n_fix)
+            } else {
+                "-".to_string()
+            }
         );
     }
     for ((mi, m), r) in &rows {

@@ -137,6 +137,29 @@ macro_rules! properties {
             }
             /// The continuity step (large enough to stand above the backend's rounding).
             const STEP: f64 = $step;
+            /// Scale applied to every position so the configuration fits the backend's
+            /// coordinate range (1 for the float types; 1/4 for `Fixed22`, whose positions
+            /// are limited to [-4, 4]; the models are scale invariant).
+            fn k() -> f64 {
+                T::COORDINATE_LIMIT.min(16.0) / 16.0
+            }
+            /// A direction's length scale clamped into what the backend represents (directions
+            /// of any length are valid; `Fixed22` holds lengths in [2^-8, 2^8] exactly enough).
+            fn dir_scale(s: f64) -> f64 {
+                if T::COORDINATE_LIMIT < f64::MAX {
+                    s.clamp(1.0 / 256.0, 256.0)
+                } else {
+                    s
+                }
+            }
+            /// A length scale `s` clamped into what the backend can represent as a position.
+            fn pos_scale(s: f64) -> f64 {
+                if T::COORDINATE_LIMIT < f64::MAX {
+                    s.clamp(1.0 / 64.0, T::COORDINATE_LIMIT / 25.0)
+                } else {
+                    s
+                }
+            }
             fn is_f64() -> bool {
                 T::EPSILON.to_f64() < 1e-10
             }
@@ -165,7 +188,7 @@ macro_rules! properties {
                 fn range(seed in any::<u64>(), ex in -6i32..6, m in 0u32..80) {
                     let mut rng = Rng::new(seed);
                     let s = 10f64.powi(ex);
-                    let (axis, n) = (scale(rng.dir(), s), scale(rng.dir(), 1.0 / s));
+                    let (axis, n) = (scale(rng.dir(), dir_scale(s)), scale(rng.dir(), dir_scale(1.0 / s)));
                     let sigma = rng.range(0.0, FRAC_PI_2);
                     let l = lobe::<T>(m);
                     let h = hemi::<T>(axis);
@@ -191,7 +214,8 @@ macro_rules! properties {
                         prop_assert!(e[i] >= lo * (1.0 - 1e-6) && e[i] <= hi * (1.0 + 1e-6), "sky_ground {:?}", e);
                     }
                     // A sphere at any distance and scale, p anywhere outside.
-                    let radius = rng.range(1e-3, 2.0) * s;
+                    let sp = pos_scale(s);
+                    let radius = rng.range(1e-3, 2.0) * sp;
                     let p = scale(rng.dir(), radius * (1.0 + 10f64.powi(rng.below(8) as i32 - 6)));
                     let sph = SphereLight::<T>::new(v([0.0; 3]), T::from_f64(radius)).unwrap();
                     prop_assert!(in01(sph.lambert(v(p), v(n))));
@@ -199,7 +223,7 @@ macro_rules! properties {
                     prop_assert!(in01(sph.phong(&l, v(p), v(n))));
                     // A polygon (possibly seen edge-on or from very close).
                     let mut pc = convex_poly(&mut rng);
-                    pc.verts = pc.verts.iter().map(|&x| scale(x, s)).collect();
+                    pc.verts = pc.verts.iter().map(|&x| scale(x, sp / 4.0)).collect();
                     let pp = scale(pc.verts[0], rng.range(0.0, 1.2));
                     if let Some(pl) = poly::<T>(&pc.verts) {
                         prop_assert!(in01(pl.lambert(v(pp), v(n))));
@@ -252,6 +276,7 @@ macro_rules! properties {
                     let m = PROP_MS[mi];
                     let mut rng = Rng::new(seed);
                     let (r, t) = rigid(&mut rng);
+                    let t = scale(t, k());
                     let t_ = tol(m);
                     // Hemisphere and cap: directions only.
                     let (axis, n, sigma) = (rng.dir(), rng.dir(), rng.range(0.0, FRAC_PI_2));
@@ -276,7 +301,7 @@ macro_rules! properties {
                         prop_assert!(diff(*a, *b) <= 2.0 * t_ + f64_change(*fa, *fb), "model {} {} {}", i, a, b);
                     }
                     // Sphere: centre, p moved, r rotated.
-                    let (center, radius) = (rng.sdir(), rng.range(0.1, 1.0));
+                    let (center, radius) = (scale(rng.sdir(), k()), k() * rng.range(0.1, 1.0));
                     let p = add(center, scale(rng.dir(), radius * rng.range(1.05, 8.0)));
                     let s1 = SphereLight::<T>::new(v(center), T::from_f64(radius)).unwrap();
                     let s2 = SphereLight::<T>::new(v(mv(&r, t, center)), T::from_f64(radius)).unwrap();
@@ -292,7 +317,9 @@ macro_rules! properties {
                         prop_assert!(diff(a, b) <= 2.0 * t_ + f64_change(fa, fb), "sphere {} {}", a, b);
                     }
                     // Polygon.
-                    let c = convex_poly(&mut rng);
+                    let mut c = convex_poly(&mut rng);
+                    c.verts = c.verts.iter().map(|&x| scale(x, k())).collect();
+                    c.p = scale(c.p, k());
                     let moved: Vec<V3> = c.verts.iter().map(|&x| mv(&r, t, x)).collect();
                     let (p2, k2) = (mv(&r, t, c.p), rot(&r, c.k));
                     let rnd = |vs: &[V3]| vs.iter().map(|&x| rdv::<T>(x)).collect::<Vec<_>>();
@@ -488,4 +515,10 @@ properties!(
     step = 1e-2
 );
 // The fixed-point backend, once it implements `Real`, is one more line:
-// properties!(fixed_props, arealight::Fixed22, tol = <its bound>, per_m = 0.0, step = 1e-2);
+properties!(
+    fixed_props,
+    arealight::Fixed22,
+    tol = 1.0 / 1024.0,
+    per_m = 0.0,
+    step = 1e-2
+);
