@@ -330,9 +330,10 @@ mod hemisphere_impls {
         fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
-                let (Ok(up), Ok(down)) =
-                    (HemisphereLight::new(self.up()), HemisphereLight::new(-self.up()))
-                else {
+                let (Ok(up), Ok(down)) = (
+                    HemisphereLight::new(self.up()),
+                    HemisphereLight::new(-self.up()),
+                ) else {
                     return black();
                 };
                 self.sky()

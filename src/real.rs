@@ -193,6 +193,28 @@ pub trait Real:
         let r = Self::ONE / m;
         [v[0] * r, v[1] * r, v[2] * r]
     }
+    /// `1/sqrt(self)` for `self > 0`; 0 otherwise (never infinite). The float types compute
+    /// `1 / sqrt(x)`; the fixed-point type has its own Newton iteration (no division).
+    #[inline(always)]
+    fn rsqrt(self) -> Self {
+        if self > Self::ZERO {
+            Self::ONE / self.sqrt()
+        } else {
+            Self::ZERO
+        }
+    }
+    /// `(sqrt(self), 1/sqrt(self))` for `self > 0`, `(0, 0)` otherwise: a length and its
+    /// reciprocal, as a normalization needs both. Floats: 1 sqrt and 1 division; fixed point:
+    /// 1 [`Real::rsqrt`] and 1 product.
+    #[inline(always)]
+    fn sqrt_rsqrt(self) -> (Self, Self) {
+        if self > Self::ZERO {
+            let s = self.sqrt();
+            (s, Self::ONE / s)
+        } else {
+            (Self::ZERO, Self::ZERO)
+        }
+    }
     /// `self * self`.
     #[inline(always)]
     fn sq(self) -> Self {

@@ -3,7 +3,7 @@
 //!
 //! A [`Scene`] holds up to `L` lights (a `heapless` vector: no allocation; [`Scene::push`]
 //! hands the light back when full), each with a colour and, with the `shaping` feature, an
-//! optional [`Uberlight`](crate::Uberlight) beam. Everything per-light constant is computed
+//! optional [`Uberlight`] beam. Everything per-light constant is computed
 //! when the light is built (the models' constructors) or pushed (the light's reach, below).
 //!
 //! [`Scene::prepare`] takes an object's [`ObjectBounds`] (its bounding sphere and, optionally,

@@ -70,7 +70,8 @@ impl<T: Real> Vec3<T> {
     /// every component) or non-finite vector.
     ///
     /// Scales by the largest component first, so it neither overflows for huge vectors nor
-    /// underflows for small ones. Cost: 1 sqrt, 2 divisions, ~12 other operations.
+    /// underflows for small ones. Cost: 1 [`Real::rsqrt`] (floats: 1 sqrt and 1 division), the
+    /// rescaling ([`Real::div3`]: 1 division for floats), ~12 other operations.
     #[inline]
     pub fn normalize(self) -> Option<Self> {
         let m = self.max_abs();
@@ -78,8 +79,7 @@ impl<T: Real> Vec3<T> {
             return None;
         }
         let s = self.div_components(m);
-        let len = s.length();
-        Some(s * (T::ONE / len))
+        Some(s * s.dot(s).rsqrt())
     }
     /// Like [`Vec3::normalize`] but also returns the original length.
     #[inline]
@@ -89,8 +89,8 @@ impl<T: Real> Vec3<T> {
             return None;
         }
         let s = self.div_components(m);
-        let len = s.length();
-        Some((s * (T::ONE / len), len * m))
+        let (len, inv) = s.dot(s).sqrt_rsqrt();
+        Some((s * inv, len * m))
     }
     /// Validating normalization for constructors: `param` names the parameter in the error.
     pub fn try_normalize(self, param: &'static str) -> Result<Self, Error> {

@@ -231,7 +231,7 @@ fn conversions_and_saturation() {
     assert_eq!(F::MIN * F::TWO, F::MIN);
     assert_eq!(F::MIN * -F::TWO, F::MAX);
     assert_eq!(F::MIN.abs(), F::MAX);
-    assert_eq!((F::PI.to_f64() - PI).abs() <= 0.5 * LSB, true);
+    assert!((F::PI.to_f64() - PI).abs() <= 0.5 * LSB);
     assert_eq!(F::ONE / F::ZERO, F::MAX);
     assert_eq!(-F::ONE / F::ZERO, F::MIN);
     assert_eq!(F::ZERO / F::ZERO, F::ZERO);
@@ -711,4 +711,37 @@ fn arbitrary_bit_patterns_never_overflow() {
         accepted[0], accepted[1], accepted[2], accepted[3], accepted[4], accepted[5]
     );
     assert!(accepted.iter().all(|&n| n > 200), "{accepted:?}");
+}
+
+#[test]
+fn rsqrt_within_bound() {
+    let mut rng = Rng::new(0x125);
+    let mut xs = random_bits(&mut rng, 1_000_000);
+    xs.extend(edge_bits());
+    xs.extend(1..1 << 16); // exhaustive over the smallest inputs (results near and above MAX)
+    // Exhaustive over [1, 1 + 2^-6) and [3.99, 4) in steps of 1 LSB, where the octave changes.
+    xs.extend((1 << 22)..(1 << 22) + (1 << 16));
+    xs.extend((4 << 22) - (1 << 16)..(4 << 22));
+    let mut worst = (0.0, 0);
+    for &b in &xs {
+        let x = fx(b);
+        let got = x.rsqrt().to_f64();
+        let want = if b > 0 {
+            (1.0 / x.to_f64().sqrt()).min(F::MAX.to_f64())
+        } else {
+            0.0
+        };
+        // Bound: 1 LSB plus 2^-28 relative.
+        let e = (got - want).abs() / (LSB + want * 2f64.powi(-28));
+        if e > worst.0 {
+            worst = (e, b);
+        }
+    }
+    println!(
+        "[maxerr] Fixed22 rsqrt: {:.3} in units of (1 LSB + 2^-28 relative) at bits {} (bound 1)",
+        worst.0, worst.1
+    );
+    assert!(worst.0 <= 1.0);
+    let (s, r) = fx(4 << 22).sqrt_rsqrt();
+    assert_eq!((s.to_f64(), r.to_f64()), (2.0, 0.5));
 }

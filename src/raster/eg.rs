@@ -57,7 +57,10 @@ impl<P: EgPixel> Band<'_, P> {
     ///
     /// # Errors
     /// The display's error.
-    pub fn flush_to<D: DrawTarget<Color = P::Color>>(&self, display: &mut D) -> Result<(), D::Error> {
+    pub fn flush_to<D: DrawTarget<Color = P::Color>>(
+        &self,
+        display: &mut D,
+    ) -> Result<(), D::Error> {
         let area = Rectangle::new(
             Point::new(0, self.y0() as i32),
             Size::new(self.width() as u32, self.rows() as u32),

@@ -219,7 +219,14 @@ pub fn cuboid<T: Real>(
     let (o, l) = (T::ZERO, T::ONE);
     let (x, y, z) = (Vec3::new(l, o, o), Vec3::new(o, l, o), Vec3::new(o, o, l));
     // (normal, u, v) with u x v = normal.
-    let faces = [(x, y, z), (-x, z, y), (y, z, x), (-y, x, z), (z, x, y), (-z, y, x)];
+    let faces = [
+        (x, y, z),
+        (-x, z, y),
+        (y, z, x),
+        (-y, x, z),
+        (z, x, y),
+        (-z, y, x),
+    ];
     let scale = |v: Vec3<T>| Vec3::new(v.x * half.x, v.y * half.y, v.z * half.z);
     for (f, &(n, u, v)) in faces.iter().enumerate() {
         let (c, u, v) = (scale(n), scale(u), scale(v));

@@ -270,7 +270,11 @@ impl<T: Real> Affine<T> {
         }
         let o = T::ZERO;
         Ok(Self::from_parts(
-            [Vec3::new(s.x, o, o), Vec3::new(o, s.y, o), Vec3::new(o, o, s.z)],
+            [
+                Vec3::new(s.x, o, o),
+                Vec3::new(o, s.y, o),
+                Vec3::new(o, o, s.z),
+            ],
             Vec3::new(o, o, o),
         ))
     }
@@ -288,9 +292,21 @@ impl<T: Real> Affine<T> {
         let (s, c) = (angle.sin(), angle.cos());
         let k = T::ONE - c;
         let m = [
-            Vec3::new(c + a.x * a.x * k, a.x * a.y * k - a.z * s, a.x * a.z * k + a.y * s),
-            Vec3::new(a.y * a.x * k + a.z * s, c + a.y * a.y * k, a.y * a.z * k - a.x * s),
-            Vec3::new(a.z * a.x * k - a.y * s, a.z * a.y * k + a.x * s, c + a.z * a.z * k),
+            Vec3::new(
+                c + a.x * a.x * k,
+                a.x * a.y * k - a.z * s,
+                a.x * a.z * k + a.y * s,
+            ),
+            Vec3::new(
+                a.y * a.x * k + a.z * s,
+                c + a.y * a.y * k,
+                a.y * a.z * k - a.x * s,
+            ),
+            Vec3::new(
+                a.z * a.x * k - a.y * s,
+                a.z * a.y * k + a.x * s,
+                c + a.z * a.z * k,
+            ),
         ];
         Ok(Self::from_parts(m, Vec3::new(T::ZERO, T::ZERO, T::ZERO)))
     }
@@ -501,11 +517,11 @@ impl<T: Real> Camera<T> {
         if !(c[2] >= self.near) {
             return None;
         }
-        Some(self.to_screen(c))
+        Some(self.screen_xy(c))
     }
 
     #[inline]
-    fn to_screen(&self, c: [T; 4]) -> (T, T) {
+    fn screen_xy(&self, c: [T; 4]) -> (T, T) {
         let iw = T::ONE / c[3];
         let hw = T::from_u32(self.width as u32) * T::HALF;
         let hh = T::from_u32(self.height as u32) * T::HALF;
@@ -707,10 +723,11 @@ where
                 ok = false;
                 break;
             }
-            let n = transform
-                .normal(v.normal)
-                .normalize()
-                .unwrap_or(Vec3::new(T::ZERO, T::ZERO, T::ZERO));
+            let n = transform.normal(v.normal).normalize().unwrap_or(Vec3::new(
+                T::ZERO,
+                T::ZERO,
+                T::ZERO,
+            ));
             cv[k] = ClipVert {
                 c: camera.clip(p),
                 p,
@@ -729,7 +746,7 @@ where
         let all_in = (0..3).all(|k| (0..6).all(|pl| d[k][pl] >= T::ZERO));
         // Band test on the screen rows (conservative by a pixel), before any shading.
         if d.iter().all(|dk| dk[0] >= T::ZERO) {
-            let ys: [f64; 3] = core::array::from_fn(|k| camera.to_screen(cv[k].c).1.to_f64());
+            let ys: [f64; 3] = core::array::from_fn(|k| camera.screen_xy(cv[k].c).1.to_f64());
             let (lo, hi) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
             if hi < row0 as f64 - 1.0 || lo > row1 as f64 + 1.0 {
                 continue;
@@ -792,7 +809,7 @@ fn raster_triangle<T, P, S>(
         if !(c[3] > T::ZERO) {
             return;
         }
-        let (x, y) = camera.to_screen(c);
+        let (x, y) = camera.screen_xy(c);
         if !(x.is_finite() && y.is_finite()) {
             return;
         }

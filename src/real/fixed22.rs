@@ -30,6 +30,7 @@
 //! |---|---|---|---|
 //! | `a / b` | `u32` division for the integer part, 22 restoring-division steps for the fraction and one for rounding; no 64-bit division | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = +-MAX, `0 / 0` = 0 | 0.500 LSB |
 //! | `sqrt` | the `fixed` crate's integer square root (rounded down) | 1 LSB; 0 for `x <= 0` | 1.000 LSB |
+//! | `rsqrt` | `x = m 2^sh`, `m` in [1, 4); a quadratic start per octave pair and two Newton steps in Q30; no division | 1 LSB + 2^-28 relative; 0 for `x <= 0`, MAX below `2^-18` | 0.511 (of the bound) |
 //! | `atan2` | octant reduction, the ratio `t <= 1` by 30 restoring-division steps, odd minimax polynomial of degree 17 for `atan t` in Q30 (kernel error 5.8e-9) | 1 LSB; `atan2(0, 0) = 0` | 0.542 LSB |
 //! | `sin`, `cos` | reduction by `pi/2` with a Q38 `pi/2`, minimax polynomials of degree 7 (sin) and 8 (cos) in Q30 on `[-pi/4, pi/4]` | 1 LSB for `|x| <= 64`; within `[-1, 1]` (+2 LSB) everywhere | 0.522 LSB |
 //! | `exp` | `x = k ln 2 + r`, degree-6 minimax polynomial for `e^r` in Q30, shift by `k` | `(1 + e^x)` LSB; MAX above `9 ln 2`, 0 below -17 | 0.500 |
@@ -273,6 +274,11 @@ const LN1P_Q30: [i64; 9] = [
     93339587,
 ];
 
+/// `1/sqrt(m)` for `m` in [1, 2) and in [2, 4): quadratic minimax starts (relative error
+/// 3.2e-3) for two Newton steps (then 3.5e-10).
+const RSQRT_LO_Q30: [i64; 3] = [1696124904, -784383972, 158578317];
+const RSQRT_HI_Q30: [i64; 3] = [1199341422, -277321613, 28032951];
+
 const PI_Q30: i64 = 3_373_259_426; // pi 2^30
 const FRAC_PI_2_Q30: i64 = 1_686_629_713; // pi/2 2^30
 const FRAC_PI_2_Q38: i64 = 431_777_206_567; // pi/2 2^38
@@ -347,6 +353,39 @@ fn exp_bits(x: i32) -> i32 {
         p << -shift
     };
     v.min(i32::MAX as i64) as i32
+}
+
+/// `1/sqrt(x)` in Q22 of a Q22 argument, saturated; 0 for `x <= 0`. With `x = v 2^-22` and
+/// `v = m 2^sh` (`m` in Q30 in [1, 4), `sh` even), `1/sqrt(x) = (1/sqrt(m)) 2^(-4 - sh/2)`:
+/// a quadratic start and two Newton steps `y (3 - m y^2)/2` in Q30, no division.
+fn rsqrt_bits(x: i32) -> i32 {
+    if x <= 0 {
+        return 0;
+    }
+    let v = x as u32;
+    let top = 31 - v.leading_zeros() as i32; // 0..=30
+    let mut sh = top - 30; // in [-30, 0]
+    if sh & 1 != 0 {
+        sh -= 1; // even, rounding down
+    }
+    let m = i64::from(v << -sh); // Q30 in [1, 4)
+    let c = if m < 2 << 30 {
+        &RSQRT_LO_Q30
+    } else {
+        &RSQRT_HI_Q30
+    };
+    let mut y = horner_q30(c, m);
+    for _ in 0..2 {
+        let my2 = mul_q30(m, mul_q30(y, y));
+        y = mul_q30(y, (3 << 30) - my2) >> 1;
+    }
+    let s = 12 + sh / 2; // in [-3, 12]
+    let r = if s > 0 {
+        (y + (1 << (s - 1))) >> s
+    } else {
+        y << -s
+    };
+    r.min(i32::MAX as i64) as i32
 }
 
 /// `ln x` in Q22 of a Q22 argument; `i32::MIN` (-512) for `x <= 0`.
@@ -443,6 +482,17 @@ impl Real for Fixed22 {
     #[inline(always)]
     fn is_finite(self) -> bool {
         true
+    }
+    /// Own Newton iteration (see the module docs); 0 for `x <= 0`, MAX where the result
+    /// exceeds the range (`x < 2^-18`).
+    #[inline]
+    fn rsqrt(self) -> Self {
+        Fixed22::from_bits(rsqrt_bits(self.to_bits()))
+    }
+    #[inline]
+    fn sqrt_rsqrt(self) -> (Self, Self) {
+        let r = self.rsqrt();
+        (self * r, r)
     }
     #[inline]
     fn div3(v: [Self; 3], m: Self) -> [Self; 3] {

@@ -1,0 +1,780 @@
+//! The rasterizer: exact coverage (exhaustive on small grids), band rendering equal to
+//! full-frame rendering bit for bit, analytic pixel values, depth, culling, clipping, meshes.
+#![cfg(feature = "raster")]
+
+use arealight::raster::edge::{edge_function, SUBPIXEL};
+use arealight::raster::{
+    draw, mesh, Affine, Band, Camera, Cull, DrawOptions, EdgeTriangle, Encoding, FixedPoint, Lit,
+    Material, Mesh, PixelFormat, Projection, RasterError, Rgb565, Rgb888, Shading, Vertex,
+};
+use arealight::{
+    HemisphereLight, PhongLobe, PolygonLight, Real, Rgb, SkyGround, SphereLight, Vec3,
+};
+
+/// Counts, per pixel of `[x0, x1) x [y0, y1)`, the triangles that cover it.
+fn coverage(tris: &[[FixedPoint; 3]], x0: i32, y0: i32, x1: i32, y1: i32) -> Vec<u32> {
+    let (w, h) = ((x1 - x0) as usize, (y1 - y0) as usize);
+    let mut count = vec![0u32; w * h];
+    for t in tris {
+        // Shift so the window starts at pixel (0, 0).
+        let s = |p: FixedPoint| FixedPoint::new(p.x - x0 * SUBPIXEL, p.y - y0 * SUBPIXEL);
+        if let Some(e) = EdgeTriangle::new([s(t[0]), s(t[1]), s(t[2])], Cull::None) {
+            e.for_each_covered(w as i32, 0, h as i32, |x, y, _| {
+                count[y as usize * w + x as usize] += 1;
+            });
+        }
+    }
+    count
+}
+
+/// Strictly inside the triangle (either orientation).
+fn strictly_inside(t: &[FixedPoint; 3], p: FixedPoint) -> bool {
+    let e = [
+        edge_function(t[0], t[1], p),
+        edge_function(t[1], t[2], p),
+        edge_function(t[2], t[0], p),
+    ];
+    e.iter().all(|&v| v > 0) || e.iter().all(|&v| v < 0)
+}
+
+#[test]
+fn shared_edges_cover_every_pixel_once_exhaustive() {
+    // Every ordered pair of distinct points of a quarter-pixel lattice over 3x3 pixels (the
+    // lattice contains the pixel centres, so many edges pass exactly through them), with far
+    // apexes on both sides: the two triangles share the edge a-b.
+    let pts: Vec<FixedPoint> = (0..13)
+        .flat_map(|i| (0..13).map(move |j| FixedPoint::new(4 * i, 4 * j)))
+        .collect();
+    let mut on_edge_pixels = 0u64;
+    for &a in &pts {
+        for &b in &pts {
+            if a == b {
+                continue;
+            }
+            let perp = (-(b.y - a.y), b.x - a.x);
+            let l = FixedPoint::new(a.x + 16 * perp.0, a.y + 16 * perp.1);
+            let r = FixedPoint::new(a.x - 16 * perp.0, a.y - 16 * perp.1);
+            let tris = [[a, b, l], [b, a, r]];
+            let cov = coverage(&tris, -1, -1, 4, 4);
+            for py in -1..4 {
+                for px in -1..4 {
+                    let c = cov[((py + 1) * 5 + px + 1) as usize];
+                    assert!(
+                        c <= 1,
+                        "pixel ({px},{py}) drawn {c} times, edge {a:?}-{b:?}"
+                    );
+                    let p = FixedPoint::pixel_centre(px, py);
+                    let along = i64::from(p.x - a.x) * i64::from(p.x - b.x)
+                        + i64::from(p.y - a.y) * i64::from(p.y - b.y);
+                    let on_shared = edge_function(a, b, p) == 0 && along < 0;
+                    if on_shared {
+                        on_edge_pixels += 1;
+                    }
+                    if on_shared || strictly_inside(&tris[0], p) || strictly_inside(&tris[1], p) {
+                        assert_eq!(c, 1, "pixel ({px},{py}) missed, edge {a:?}-{b:?}");
+                    }
+                }
+            }
+        }
+    }
+    // The exhaustive set really exercised the tie-breaking rule.
+    assert!(on_edge_pixels > 1_000, "{on_edge_pixels}");
+}
+
+/// A small deterministic generator.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> u32 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 33) as u32
+    }
+    fn range(&mut self, n: i32) -> i32 {
+        (self.next() % n as u32) as i32
+    }
+}
+
+#[test]
+fn jittered_meshes_cover_the_window_exactly_once() {
+    // A 6x6 grid of quads over [-2, 10] pixels, each vertex jittered by up to a quarter cell
+    // (on a 4-step lattice for half the seeds, so edges and vertices hit pixel centres), quads
+    // split along a random diagonal, either winding: every pixel of the 8x8 window exactly
+    // once. Seeds whose jitter folds a triangle over (the mesh overlaps itself) are skipped.
+    let mut used = 0;
+    for seed in 0..400u64 {
+        let mut rng = Lcg(seed);
+        let n = 6;
+        let step = 2 * SUBPIXEL;
+        let coarse = seed % 2 == 0;
+        let grid: Vec<FixedPoint> = (0..=n)
+            .flat_map(|i| (0..=n).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let inner = i > 0 && i < n && j > 0 && j < n;
+                let (mut dx, mut dy) = (0, 0);
+                if inner {
+                    dx = rng.range(step / 2) - step / 4;
+                    dy = rng.range(step / 2) - step / 4;
+                    if coarse {
+                        dx -= dx.rem_euclid(4);
+                        dy -= dy.rem_euclid(4);
+                    }
+                }
+                FixedPoint::new(-2 * SUBPIXEL + i * step + dx, -2 * SUBPIXEL + j * step + dy)
+            })
+            .collect();
+        let at = |i: i32, j: i32| grid[(i * (n + 1) + j) as usize];
+        let mut tris = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                let (t1, t2) = if rng.next() % 2 == 0 {
+                    ([a, b, c], [a, c, d])
+                } else {
+                    ([a, b, d], [b, c, d])
+                };
+                if seed % 3 == 0 {
+                    tris.push([t1[0], t1[2], t1[1]]);
+                    tris.push([t2[0], t2[2], t2[1]]);
+                } else {
+                    tris.push(t1);
+                    tris.push(t2);
+                }
+            }
+        }
+        let sign = |t: &[FixedPoint; 3]| edge_function(t[0], t[1], t[2]).signum();
+        if tris.iter().any(|t| sign(t) != sign(&tris[0])) {
+            continue;
+        }
+        used += 1;
+        let cov = coverage(&tris, 0, 0, 8, 8);
+        assert!(cov.iter().all(|&c| c == 1), "seed {seed}: {cov:?}");
+    }
+    assert!(used > 300, "{used}");
+}
+
+#[test]
+fn top_left_rule_on_pixel_centres() {
+    // A square whose edges run through pixel centres (8, 8) to (40, 40): the top and left
+    // edges are in, the bottom and right ones out, so exactly pixels (0..2, 0..2).
+    let (a, b, c, d) = (
+        FixedPoint::new(8, 8),
+        FixedPoint::new(40, 8),
+        FixedPoint::new(40, 40),
+        FixedPoint::new(8, 40),
+    );
+    let cov = coverage(&[[a, b, c], [a, c, d]], 0, 0, 4, 4);
+    let expect: Vec<u32> = (0..16).map(|i| u32::from(i % 4 < 2 && i / 4 < 2)).collect();
+    assert_eq!(cov, expect);
+    // The square from (0, 0) to (64, 64): all 16 pixel centres strictly inside.
+    let (a, b, c, d) = (
+        FixedPoint::new(0, 0),
+        FixedPoint::new(64, 0),
+        FixedPoint::new(64, 64),
+        FixedPoint::new(0, 64),
+    );
+    assert_eq!(coverage(&[[a, b, c], [a, c, d]], 0, 0, 4, 4), vec![1; 16]);
+    // Zero area and culling.
+    assert!(EdgeTriangle::new([a, b, FixedPoint::new(128, 0)], Cull::None).is_none());
+    // (a, b, c) is clockwise on the y-down grid: a back face in the mesh convention.
+    assert!(EdgeTriangle::new([a, b, c], Cull::Back).is_none());
+    assert!(EdgeTriangle::new([a, c, b], Cull::Back).is_some());
+}
+
+// ---------------------------------------------------------------------------------------
+// A scene for the pipeline tests.
+
+struct Meshes<T> {
+    sphere: (Vec<Vertex<T>>, Vec<[u16; 3]>),
+    torus: (Vec<Vertex<T>>, Vec<[u16; 3]>),
+    cube: (Vec<Vertex<T>>, Vec<[u16; 3]>),
+    floor: (Vec<Vertex<T>>, Vec<[u16; 3]>),
+}
+
+fn buffers<T: Real>(c: arealight::raster::MeshCounts) -> (Vec<Vertex<T>>, Vec<[u16; 3]>) {
+    let z = Vertex::new(
+        Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+    );
+    (vec![z; c.vertices], vec![[0; 3]; c.triangles])
+}
+
+fn meshes<T: Real>() -> Meshes<T> {
+    let k = T::from_f64;
+    let mut sphere = buffers(mesh::uv_sphere_counts(10, 16));
+    mesh::uv_sphere(k(0.8), 10, 16, &mut sphere.0, &mut sphere.1).unwrap();
+    let mut torus = buffers(mesh::torus_counts(20, 10));
+    mesh::torus(k(0.7), k(0.25), 20, 10, &mut torus.0, &mut torus.1).unwrap();
+    let mut cube = buffers(mesh::cuboid_counts());
+    mesh::cuboid(Vec3::new(k(0.5), k(0.4), k(0.3)), &mut cube.0, &mut cube.1).unwrap();
+    let mut floor = buffers(mesh::plane_counts(6, 6));
+    // Large enough to cross the near plane and the guard band.
+    mesh::plane(k(200.0), k(200.0), 6, 6, &mut floor.0, &mut floor.1).unwrap();
+    Meshes {
+        sphere,
+        torus,
+        cube,
+        floor,
+    }
+}
+
+fn camera<T: Real>(w: u16, h: u16) -> Camera<T> {
+    let k = T::from_f64;
+    Camera::new(
+        Vec3::new(k(0.5), k(1.6), k(4.5)),
+        Vec3::new(k(0.0), k(0.2), k(0.0)),
+        Vec3::new(k(0.0), k(1.0), k(0.0)),
+        Projection::Perspective { fov_y: k(0.9) },
+        w,
+        h,
+    )
+    .unwrap()
+}
+
+type MeshVecs<T> = (Vec<Vertex<T>>, Vec<[u16; 3]>);
+type Draw<'a, T> = (
+    &'a MeshVecs<T>,
+    Affine<T>,
+    &'a Material<T>,
+    &'a DrawOptions<T>,
+);
+
+/// Draws the scene into `band` with both shading modes on different objects.
+fn draw_scene<T: Real, P: PixelFormat>(band: &mut Band<'_, P>, m: &Meshes<T>, cam: &Camera<T>) {
+    let k = T::from_f64;
+    let v = |x: f64, y: f64, z: f64| Vec3::new(k(x), k(y), k(z));
+    let panel = PolygonLight::<T, 4>::new(&[
+        v(-1.0, 3.0, -1.0),
+        v(1.0, 3.0, -1.0),
+        v(1.0, 3.0, 1.0),
+        v(-1.0, 3.0, 1.0),
+    ])
+    .unwrap();
+    let lamp = SphereLight::new(v(2.0, 2.0, 2.0), k(0.4)).unwrap();
+    let sky = SkyGround::new(
+        v(0.0, 1.0, 0.0),
+        Rgb::new(k(0.1), k(0.1), k(0.2)),
+        Rgb::new(k(0.05), k(0.04), k(0.0)),
+    )
+    .unwrap();
+    let lights: [&dyn arealight::Illuminant<T>; 3] = [&panel, &lamp, &sky];
+    let red = Material::new(Rgb::new(k(0.9), k(0.2), k(0.1)), Rgb::splat(k(0.5)), 20).unwrap();
+    let grey = Material::matte(Rgb::splat(k(0.7))).unwrap();
+    let mut gouraud = DrawOptions::new(Shading::Gouraud);
+    let per_pixel = DrawOptions::new(Shading::PerPixel);
+    gouraud.exposure = k(1.5);
+    let draws: [Draw<'_, T>; 4] = [
+        (
+            &m.floor,
+            Affine::translation(v(0.0, -0.8, 0.0)).unwrap(),
+            &grey,
+            &gouraud,
+        ),
+        (&m.sphere, Affine::identity(), &red, &per_pixel),
+        (
+            &m.torus,
+            Affine::rotation(v(1.0, 0.0, 0.0), k(1.2))
+                .unwrap()
+                .then(&Affine::translation(v(1.3, 0.0, -0.5)).unwrap()),
+            &red,
+            &gouraud,
+        ),
+        (
+            &m.cube,
+            Affine::scale(v(1.0, 2.0, 1.0))
+                .unwrap()
+                .then(&Affine::translation(v(-1.4, 0.0, 0.3)).unwrap()),
+            &grey,
+            &per_pixel,
+        ),
+    ];
+    for (mesh, xf, mat, opts) in draws {
+        let mesh = Mesh::new(&mesh.0, &mesh.1).unwrap();
+        draw(cam, band, &mesh, &xf, &Lit::new(&lights, mat), opts).unwrap();
+    }
+}
+
+fn render_full<T: Real, P: PixelFormat + Default>(w: u16, h: u16) -> (Vec<P>, Vec<u16>) {
+    let (m, cam) = (meshes::<T>(), camera::<T>(w, h));
+    let mut px = vec![P::default(); w as usize * h as usize];
+    let mut depth = vec![0u16; px.len()];
+    let mut band = Band::new(&mut px, Some(&mut depth), w, 0).unwrap();
+    band.clear(P::default());
+    draw_scene(&mut band, &m, &cam);
+    (px, depth)
+}
+
+fn render_banded<T: Real, P: PixelFormat + Default>(
+    w: u16,
+    h: u16,
+    rows: u16,
+) -> (Vec<P>, Vec<u16>) {
+    let (m, cam) = (meshes::<T>(), camera::<T>(w, h));
+    let (mut out, mut out_depth) = (Vec::new(), Vec::new());
+    let mut px = vec![P::default(); w as usize * rows as usize];
+    let mut depth = vec![0u16; px.len()];
+    let mut band = Band::new(&mut px, Some(&mut depth), w, 0).unwrap();
+    arealight::raster::render_in_bands::<_, (), _, _>(
+        &mut band,
+        h,
+        P::default(),
+        |b| {
+            draw_scene(b, &m, &cam);
+            Ok(())
+        },
+        |b| {
+            // The last band may run past the frame: keep only the frame's rows.
+            let keep = (h - b.y0()).min(b.rows()) as usize * w as usize;
+            out.extend_from_slice(&b.pixels()[..keep]);
+            out_depth.extend_from_slice(&b.depth().unwrap()[..keep]);
+            Ok(())
+        },
+    )
+    .unwrap();
+    (out, out_depth)
+}
+
+fn bands_equal_full<T: Real, P: PixelFormat + Default + PartialEq + core::fmt::Debug>() {
+    let (w, h) = (96, 72);
+    let (full, full_depth) = render_full::<T, P>(w, h);
+    // The scene covers a good part of the frame, with depth-tested overlaps.
+    let drawn = full_depth.iter().filter(|&&d| d != u16::MAX).count();
+    assert!(drawn > (w as usize * h as usize) / 2, "{drawn}");
+    for rows in [1, 7, 16, 72] {
+        let (banded, banded_depth) = render_banded::<T, P>(w, h, rows);
+        assert_eq!(banded.len(), full.len());
+        let diff = full.iter().zip(&banded).filter(|(a, b)| a != b).count();
+        assert_eq!(
+            diff, 0,
+            "{rows}-row bands differ from the full frame in {diff} pixels"
+        );
+        assert_eq!(banded_depth, full_depth, "{rows}-row bands: depth differs");
+    }
+}
+
+#[test]
+fn band_rendering_equals_full_frame_f32_rgb565() {
+    bands_equal_full::<f32, Rgb565>();
+}
+
+#[test]
+fn band_rendering_equals_full_frame_f64_rgb888() {
+    bands_equal_full::<f64, Rgb888>();
+}
+
+#[test]
+fn band_rendering_equals_full_frame_fast32_rgb565() {
+    bands_equal_full::<arealight::Fast32, Rgb565>();
+}
+
+/// An orthographic view straight down on a plane tilted about z by `tilt`.
+fn tilted_plane_pixels(tilt: f64, shading: Shading) -> (Vec<Rgb888>, f64) {
+    let v = |x: f64, y: f64, z: f64| Vec3::<f64>::new(x, y, z);
+    let cam = Camera::new(
+        v(0.0, 5.0, 0.0),
+        v(0.0, 0.0, 0.0),
+        v(0.0, 0.0, -1.0),
+        Projection::Orthographic { half_height: 1.0 },
+        32,
+        32,
+    )
+    .unwrap();
+    let (mut verts, mut tris) = buffers::<f64>(mesh::plane_counts(3, 3));
+    mesh::plane(4.0, 4.0, 3, 3, &mut verts, &mut tris).unwrap();
+    let mesh = Mesh::new(&verts, &tris).unwrap();
+    let xf = Affine::rotation(v(0.0, 0.0, 1.0), tilt).unwrap();
+    let light = HemisphereLight::new(v(0.3, 1.0, 0.2)).unwrap();
+    let white = Material::matte(Rgb::splat(1.0)).unwrap();
+    let mut opts = DrawOptions::new(shading);
+    opts.encoding = Encoding::Linear;
+    let mut px = vec![Rgb888([1, 2, 3]); 32 * 32];
+    let mut band = Band::new(&mut px, None, 32, 0).unwrap();
+    draw(
+        &cam,
+        &mut band,
+        &mesh,
+        &xf,
+        &Lit::new(&light, &white),
+        &opts,
+    )
+    .unwrap();
+    // The plane's normal after the rotation, and hemi_const = (1 + n.axis)/2.
+    let n = v(-tilt.sin(), tilt.cos(), 0.0);
+    let axis = v(0.3, 1.0, 0.2).normalize().unwrap();
+    (px, 0.5 * (1.0 + n.dot(axis)))
+}
+
+#[test]
+fn flat_surfaces_get_the_model_value_in_every_pixel() {
+    for shading in [Shading::Gouraud, Shading::PerPixel] {
+        for tilt in [0.0, 0.4, -0.9] {
+            let (px, e) = tilted_plane_pixels(tilt, shading);
+            let q = (e * 255.0 + 0.5).floor() as u8;
+            assert!(
+                px.iter().all(|p| p.0 == [q, q, q]),
+                "tilt {tilt} {shading:?}: expected {q}, got {:?}",
+                px.iter().find(|p| p.0 != [q, q, q])
+            );
+        }
+    }
+}
+
+#[test]
+fn nearer_surface_wins_in_either_order() {
+    let v = |x: f64, y: f64, z: f64| Vec3::<f32>::from_f64([x, y, z]);
+    let cam = Camera::new(
+        v(0.0, 0.0, 5.0),
+        v(0.0, 0.0, 0.0),
+        v(0.0, 1.0, 0.0),
+        Projection::Perspective { fov_y: 0.8 },
+        24,
+        24,
+    )
+    .unwrap();
+    let (mut verts, mut tris) = buffers::<f32>(mesh::plane_counts(1, 1));
+    mesh::plane(3.0, 3.0, 1, 1, &mut verts, &mut tris).unwrap();
+    let mesh = Mesh::new(&verts, &tris).unwrap();
+    // The plane faces +y; turn it to face the camera (+z), at z = 0 and z = 1.
+    let face = Affine::rotation(v(1.0, 0.0, 0.0), core::f32::consts::FRAC_PI_2).unwrap();
+    let far = face.then(&Affine::translation(v(0.3, 0.0, 0.0)).unwrap());
+    let near = face.then(&Affine::translation(v(-0.3, 0.0, 1.0)).unwrap());
+    let light = arealight::Ambient(Rgb::splat(1.0f32));
+    let (red, blue) = (
+        Material::matte(Rgb::new(1.0, 0.0, 0.0)).unwrap(),
+        Material::matte(Rgb::new(0.0, 0.0, 1.0)).unwrap(),
+    );
+    let opts = DrawOptions::new(Shading::Gouraud);
+    let mut results = Vec::new();
+    for order in [
+        [(&far, &red), (&near, &blue)],
+        [(&near, &blue), (&far, &red)],
+    ] {
+        let mut px = vec![Rgb565(0); 24 * 24];
+        let mut depth = vec![0u16; 24 * 24];
+        let mut band = Band::new(&mut px, Some(&mut depth), 24, 0).unwrap();
+        band.clear(Rgb565(0));
+        for (xf, mat) in order {
+            draw(&cam, &mut band, &mesh, xf, &Lit::new(&light, mat), &opts).unwrap();
+        }
+        results.push(px);
+    }
+    assert_eq!(results[0], results[1]);
+    let px = &results[0];
+    // The centre is covered by both: the near (blue) one shows.
+    assert_eq!(px[12 * 24 + 12], Rgb565::new(0, 0, 31));
+    // Both colours appear.
+    assert!(px.contains(&Rgb565::new(31, 0, 0)));
+}
+
+#[test]
+fn back_faces_are_culled_unless_asked() {
+    let v = |x: f64, y: f64, z: f64| Vec3::<f32>::from_f64([x, y, z]);
+    let cam = Camera::new(
+        v(0.0, 4.0, 0.0),
+        v(0.0, 0.0, 0.0),
+        v(0.0, 0.0, -1.0),
+        Projection::Orthographic { half_height: 2.0 },
+        16,
+        16,
+    )
+    .unwrap();
+    let (mut verts, mut tris) = buffers::<f32>(mesh::plane_counts(2, 2));
+    mesh::plane(2.0, 2.0, 2, 2, &mut verts, &mut tris).unwrap();
+    let flipped: Vec<[u16; 3]> = tris.iter().map(|t| [t[0], t[2], t[1]]).collect();
+    let light = arealight::Ambient(Rgb::splat(1.0f32));
+    let white = Material::matte(Rgb::splat(1.0)).unwrap();
+    let count = |tris: &[[u16; 3]], cull: Cull| {
+        let mesh = Mesh::new(&verts, tris).unwrap();
+        let mut px = vec![Rgb565(0); 256];
+        let mut band = Band::new(&mut px, None, 16, 0).unwrap();
+        let mut opts = DrawOptions::new(Shading::Gouraud);
+        opts.cull = cull;
+        let s = draw(
+            &cam,
+            &mut band,
+            &mesh,
+            &Affine::identity(),
+            &Lit::new(&light, &white),
+            &opts,
+        )
+        .unwrap();
+        (s.pixels, px.iter().filter(|p| p.0 != 0).count() as u32)
+    };
+    // A 2x2 plane seen from above in a 4x4 view of 16 px: an 8x8 square.
+    assert_eq!(count(&tris, Cull::Back), (64, 64));
+    assert_eq!(count(&flipped, Cull::Back), (0, 0));
+    assert_eq!(count(&flipped, Cull::None), (64, 64));
+}
+
+#[test]
+fn a_plane_to_the_horizon_is_clipped_without_holes() {
+    // The camera stands on a huge floor looking slightly down: the floor crosses the near plane
+    // and the guard band; every pixel below the horizon is drawn once.
+    let v = |x: f64, y: f64, z: f64| Vec3::<f32>::from_f64([x, y, z]);
+    let cam = Camera::new(
+        v(0.0, 1.0, 0.0),
+        v(0.0, 0.6, -4.0),
+        v(0.0, 1.0, 0.0),
+        Projection::Perspective { fov_y: 1.2 },
+        40,
+        30,
+    )
+    .unwrap()
+    .with_depth_range(0.05, 1.0e4)
+    .unwrap();
+    let (mut verts, mut tris) = buffers::<f32>(mesh::plane_counts(1, 1));
+    mesh::plane(2.0e4, 2.0e4, 1, 1, &mut verts, &mut tris).unwrap();
+    let mesh = Mesh::new(&verts, &tris).unwrap();
+    let light = arealight::Ambient(Rgb::splat(1.0f32));
+    let white = Material::matte(Rgb::splat(1.0)).unwrap();
+    let mut px = vec![Rgb565(0); 40 * 30];
+    let mut band = Band::new(&mut px, None, 40, 0).unwrap();
+    let opts = DrawOptions::new(Shading::Gouraud);
+    let s = draw(
+        &cam,
+        &mut band,
+        &mesh,
+        &Affine::identity(),
+        &Lit::new(&light, &white),
+        &opts,
+    )
+    .unwrap();
+    assert!(s.rasterized > 2, "the floor was clipped into a fan: {s:?}");
+    for y in 0..30 {
+        let row: Vec<bool> = (0..40).map(|x| px[y * 40 + x].0 != 0).collect();
+        // Each row is all floor or all sky.
+        assert!(row.iter().all(|&b| b == row[0]), "row {y}: {row:?}");
+    }
+    assert!(px[29 * 40].0 != 0 && px[0].0 == 0);
+    assert_eq!(s.pixels as usize, px.iter().filter(|p| p.0 != 0).count());
+}
+
+#[test]
+fn mesh_generators_wind_with_their_normals() {
+    type M = (Vec<Vertex<f64>>, Vec<[u16; 3]>);
+    let mut s: M = buffers(mesh::uv_sphere_counts(7, 9));
+    let c1 = mesh::uv_sphere(1.3, 7, 9, &mut s.0, &mut s.1).unwrap();
+    let mut p: M = buffers(mesh::plane_counts(3, 5));
+    let c2 = mesh::plane(2.0, 1.0, 3, 5, &mut p.0, &mut p.1).unwrap();
+    let mut b: M = buffers(mesh::cuboid_counts());
+    let c3 = mesh::cuboid(Vec3::new(1.0, 2.0, 3.0), &mut b.0, &mut b.1).unwrap();
+    let mut t: M = buffers(mesh::torus_counts(12, 8));
+    let c4 = mesh::torus(2.0, 0.5, 12, 8, &mut t.0, &mut t.1).unwrap();
+    assert_eq!((c1.vertices, c1.triangles), (80, 2 * 9 * 6));
+    assert_eq!((c2.vertices, c2.triangles), (24, 30));
+    assert_eq!((c3.vertices, c3.triangles), (24, 12));
+    assert_eq!((c4.vertices, c4.triangles), (117, 192));
+    for (m, c) in [(&s, c1), (&p, c2), (&b, c3), (&t, c4)] {
+        assert_eq!(m.1.len(), c.triangles);
+        for v in &m.0 {
+            assert!((v.normal.length() - 1.0).abs() < 1e-12);
+        }
+        for tri in &m.1 {
+            let [a, b, c] = tri.map(|i| m.0[i as usize]);
+            let g = (b.position - a.position).cross(c.position - a.position);
+            assert!(g.length() > 1e-9, "degenerate triangle {tri:?}");
+            for v in [a, b, c] {
+                assert!(
+                    g.dot(v.normal) > 0.0,
+                    "triangle {tri:?} winds against its normals"
+                );
+            }
+        }
+    }
+    // Sphere vertices are on the sphere; the torus's at distance `minor` from its core circle.
+    for v in &s.0 {
+        assert!((v.position.length() - 1.3).abs() < 1e-12);
+    }
+    for v in &t.0 {
+        let q = v.position;
+        let core = (q.x * q.x + q.z * q.z).sqrt() - 2.0;
+        assert!((core.hypot(q.y) - 0.5).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn mesh_generators_refuse_small_buffers_and_bad_parameters() {
+    let z = Vertex::new(Vec3::new(0.0f32, 0.0, 0.0), Vec3::new(0.0, 0.0, 0.0));
+    let (mut v, mut t) = (vec![z; 10], vec![[0u16; 3]; 10]);
+    assert_eq!(
+        mesh::uv_sphere(1.0, 4, 4, &mut v, &mut t),
+        Err(RasterError::BufferTooSmall {
+            what: "vertices",
+            needed: 25,
+            got: 10
+        })
+    );
+    let (mut v2, mut t2) = (vec![z; 24], vec![[0u16; 3]; 11]);
+    assert_eq!(
+        mesh::cuboid(Vec3::new(1.0, 1.0, 1.0), &mut v2, &mut t2),
+        Err(RasterError::BufferTooSmall {
+            what: "triangles",
+            needed: 12,
+            got: 11
+        })
+    );
+    assert_eq!(
+        mesh::uv_sphere(1.0, 1, 4, &mut v, &mut t),
+        Err(RasterError::BadParameter("stacks"))
+    );
+    assert_eq!(
+        mesh::torus(1.0, 1.0, 4, 4, &mut v, &mut t),
+        Err(RasterError::BadParameter("minor"))
+    );
+    assert_eq!(
+        mesh::plane(f32::NAN, 1.0, 1, 1, &mut v, &mut t),
+        Err(RasterError::Model(arealight::Error::NotFinite("size_x")))
+    );
+    assert_eq!(
+        mesh::plane(1.0, 1.0, 300, 300, &mut v, &mut t),
+        Err(RasterError::TooManyVertices { needed: 301 * 301 })
+    );
+    assert_eq!(
+        Mesh::new(&v[..3], &[[0, 1, 3]]).map(|_| ()),
+        Err(RasterError::IndexOutOfRange {
+            triangle: 0,
+            index: 3
+        })
+    );
+    let mut px = [Rgb565(0); 10];
+    assert_eq!(
+        Band::new(&mut px, None, 3, 0).map(|_| ()),
+        Err(RasterError::BadSize("band"))
+    );
+}
+
+#[test]
+fn pixel_formats_round_and_expand() {
+    assert_eq!(Rgb565::from_unit(1.0f32, 1.0, 1.0), Rgb565(0xFFFF));
+    assert_eq!(Rgb565::from_unit(0.0f32, f32::NAN, -3.0), Rgb565(0));
+    assert_eq!(Rgb565::from_unit(1.0f32, 0.5, 0.0), Rgb565::new(31, 32, 0));
+    assert_eq!(Rgb565::new(31, 63, 31).to_rgb8(), [255, 255, 255]);
+    assert_eq!(Rgb565::new(16, 32, 1).to_rgb8(), [132, 130, 8]);
+    assert_eq!(Rgb888::from_unit(0.5f64, 0.25, 2.0).0, [128, 64, 255]);
+    let srgb_half = 1.055 * 0.5f64.powf(1.0 / 2.4) - 0.055;
+    assert!((Encoding::Srgb.encode(0.5f64) - srgb_half).abs() < 1e-15);
+    assert_eq!(Encoding::Srgb.encode(0.002f64), 12.92 * 0.002);
+    assert_eq!(Encoding::Gamma2.encode(0.25f32), 0.5);
+}
+
+#[test]
+fn affine_normals_stay_perpendicular_under_nonuniform_scale() {
+    let v = |x: f64, y: f64, z: f64| Vec3::<f64>::new(x, y, z);
+    for (sz, det_sign) in [(2.0, 1.0), (-2.0, -1.0)] {
+        let xf = Affine::scale(v(3.0, 0.5, sz))
+            .unwrap()
+            .then(&Affine::rotation(v(1.0, 2.0, 3.0), 0.7).unwrap())
+            .then(&Affine::translation(v(1.0, -1.0, 4.0)).unwrap());
+        // A tangent plane: two tangents and the normal of the original surface.
+        let (t1, t2) = (v(1.0, 0.2, -0.4), v(-0.3, 1.0, 0.5));
+        let n = t1.cross(t2);
+        let o = v(0.2, 0.1, -0.3);
+        let (a, b, c) = (xf.point(o), xf.point(o + t1), xf.point(o + t2));
+        let nn = xf.normal(n).normalize().unwrap();
+        assert!(nn.dot((b - a).normalize().unwrap()).abs() < 1e-14);
+        assert!(nn.dot((c - a).normalize().unwrap()).abs() < 1e-14);
+        // The normal keeps its side of the surface (outward stays outward), so under a mirror
+        // (negative determinant) it points against the transformed winding.
+        assert_eq!(nn.dot((b - a).cross(c - a)).signum(), det_sign);
+        // A point off the surface on the normal's side stays on it.
+        let side = xf.point(o + n * 0.1) - a;
+        assert!(side.dot(nn) > 0.0);
+    }
+}
+
+#[test]
+fn lit_material_is_diffuse_plus_phong() {
+    let v = |x: f64, y: f64, z: f64| Vec3::<f64>::new(x, y, z);
+    let lamp = SphereLight::new(v(0.0, 3.0, 1.0), 0.5).unwrap();
+    let mat = Material::new(Rgb::new(0.5, 0.25, 1.0), Rgb::new(0.2, 0.4, 0.0), 8).unwrap();
+    let (p, n, view) = (v(0.1, 0.0, 0.0), v(0.0, 1.0, 0.0), v(0.0, 0.6, 0.8));
+    let c = arealight::raster::Shader::shade(&Lit::new(&lamp, &mat), p, n, view);
+    let lobe = PhongLobe::new(8).unwrap();
+    let r = arealight::raster::reflect(view, n);
+    assert_eq!(r, v(0.0, 0.6, -0.8));
+    let (d, s) = (lamp.lambert(p, n), lamp.phong(&lobe, p, r));
+    assert!(d > 0.01 && s > 0.0);
+    assert_eq!(c, Rgb::new(0.5 * d + 0.2 * s, 0.25 * d + 0.4 * s, d));
+}
+
+#[cfg(feature = "embedded-graphics")]
+mod eg {
+    use super::*;
+    use embedded_graphics_core::draw_target::DrawTarget;
+    use embedded_graphics_core::geometry::{Dimensions, OriginDimensions, Point, Size};
+    use embedded_graphics_core::pixelcolor::Rgb565 as EgRgb565;
+    use embedded_graphics_core::primitives::Rectangle;
+    use embedded_graphics_core::Pixel;
+
+    /// A frame buffer display that records pixels.
+    struct Frame(Vec<EgRgb565>, u32, u32);
+    impl OriginDimensions for Frame {
+        fn size(&self) -> Size {
+            Size::new(self.1, self.2)
+        }
+    }
+    impl DrawTarget for Frame {
+        type Color = EgRgb565;
+        type Error = core::convert::Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<EgRgb565>>>(
+            &mut self,
+            it: I,
+        ) -> Result<(), Self::Error> {
+            for Pixel(p, c) in it {
+                if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.1 && (p.y as u32) < self.2 {
+                    self.0[(p.y as u32 * self.1 + p.x as u32) as usize] = c;
+                }
+            }
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn fill_contiguous_matches_draw_iter_and_flush_sends_the_band() {
+        let mut rng = Lcg(7);
+        for _ in 0..300 {
+            let (w, rows, y0) = (13u16, 5u16, rng.range(12) as u16);
+            let area = Rectangle::new(
+                Point::new(rng.range(20) - 5, rng.range(24) - 4),
+                Size::new(rng.range(18) as u32, rng.range(12) as u32),
+            );
+            let colours: Vec<EgRgb565> = (0..area.size.width * area.size.height)
+                .map(|_| {
+                    EgRgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(
+                        rng.next() as u16,
+                    ))
+                })
+                .collect();
+            let (mut a, mut b) = (vec![Rgb565(1); 65], vec![Rgb565(1); 65]);
+            let mut ba = Band::new(&mut a, None, w, y0).unwrap();
+            let mut bb = Band::new(&mut b, None, w, y0).unwrap();
+            ba.fill_contiguous(&area, colours.iter().copied()).unwrap();
+            let (aw, ah) = (area.size.width as i32, area.size.height as i32);
+            let points = (0..ah).flat_map(|y| (0..aw).map(move |x| (x, y)));
+            let at = area.top_left;
+            bb.draw_iter(
+                points
+                    .zip(colours.iter().copied())
+                    .map(|((x, y), c)| Pixel(Point::new(at.x + x, at.y + y), c)),
+            )
+            .unwrap();
+            assert_eq!(ba.pixels(), bb.pixels());
+            assert_eq!(ba.bounding_box().top_left.y, y0 as i32);
+            let _ = rows;
+        }
+        // flush_to writes the band's rows, converted.
+        let mut px: Vec<Rgb565> = (0..26).map(|i| Rgb565(i as u16 * 999)).collect();
+        let band = Band::new(&mut px, None, 13, 3).unwrap();
+        let mut frame = Frame(
+            vec![EgRgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(0)); 13 * 8],
+            13,
+            8,
+        );
+        band.flush_to(&mut frame).unwrap();
+        for i in 0..26 {
+            assert_eq!(Rgb565::from(frame.0[3 * 13 + i]), band.pixels()[i]);
+        }
+        assert!(frame.0[..39].iter().all(|c| Rgb565::from(*c) == Rgb565(0)));
+    }
+}
