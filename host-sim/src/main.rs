@@ -2,11 +2,21 @@
 //!
 //! - `host-sim eval --backend f64|f32|f32-fast|fixed`: the eval protocol
 //!   (`shared/spec/eval-protocol.md`), JSON Lines from stdin to stdout.
-//! - `host-sim render [--out DIR]` (the default with no arguments): a contact sheet of shaded
-//!   spheres, one per model, written to `DIR/contact_sheet.png`.
+//! - `host-sim render [--out DIR] [--only NAMES] [--scene FILE]` (the default with no
+//!   arguments): the contact sheet, the documents' figures rendered with the crate's
+//!   rasterizer, and the backend comparison sheets, as PNG files in `DIR` (default `out/`).
+//! - `host-sim plot [--out DIR]`: Snyder's figures 2 to 6 as line plots.
+//! - `host-sim budget [--out DIR]`: the accuracy/cost budget (budget.md, budget.csv,
+//!   budget.png), with the QEMU harness's instruction counts where present.
 
+mod budget;
+mod compare;
 mod eval;
+mod figure;
+mod plot;
 mod render;
+mod scene_file;
+mod scenes;
 
 use std::process::ExitCode;
 
@@ -33,12 +43,30 @@ enum Command {
     /// A line that is not valid JSON gets an error with "id": null. Always exits 0 unless
     /// reading or writing fails.
     Eval(eval::EvalArgs),
-    /// Render a contact sheet of shaded spheres, one per model (the default subcommand).
+    /// Render the pictures (the default subcommand): the contact sheet and every figure.
     ///
-    /// Shades a unit sphere per model in f32 under a light up-left-front of it, labels each
-    /// tile with the model id and its peak value, and writes DIR/contact_sheet.png; prints
-    /// the path written.
+    /// Writes into DIR (default out/): contact_sheet.png (one shaded sphere per model, f32);
+    /// the documents' figures rendered with the crate's own rasterizer and models:
+    /// snyder_fig7.png (directional, positional, overcast sky, sphere and polygon light on one
+    /// scene), june_fig20_3.png (sky/ground), june_fig20_9.png (SH9 disc light, Grace
+    /// Cathedral), june_fig20_17.png (uberlight), arvo_fig5.png (directional luminaire, glossy
+    /// reflection), arvo_fig8.png (frosted glass), picott_plates.png (point, linear and area
+    /// light); and compare_polygon.png, compare_sphere.png (the same frame in f64, f32,
+    /// f32-fast and fixed point with error heat maps). Prints each path written, one per line.
+    /// With --scene FILE renders a TOML scene file instead.
     Render(render::RenderArgs),
+    /// Plot Snyder's figures 2 to 6 (intensity against omega) as PNG line plots.
+    ///
+    /// Writes DIR/snyder_fig2.png ... snyder_fig6.png (default out/), computed with the
+    /// crate's f64 models; prints each path written.
+    Plot(plot::PlotArgs),
+    /// Write the accuracy/cost budget: DIR/budget.md, budget.csv and budget.png.
+    ///
+    /// One row per model id and backend (host ns per call, M4F and M0 instructions per call and
+    /// code bytes from target/qemu-budget/counts.csv, max and RMS error against f64), beside
+    /// the alternatives: point lights and each area light by k = 1, 4, 16, 64 point samples.
+    /// Run `cargo test -p host-sim --test qemu_budget` first for the target columns.
+    Budget(budget::BudgetArgs),
 }
 
 fn main() -> ExitCode {
@@ -46,6 +74,8 @@ fn main() -> ExitCode {
     match cli.command {
         Some(Command::Eval(args)) => eval::main(&args),
         Some(Command::Render(args)) => render::main(&args),
-        None => render::main(&render::RenderArgs { out: "out".into() }),
+        Some(Command::Plot(args)) => plot::main(&args),
+        Some(Command::Budget(args)) => budget::main(&args),
+        None => render::main(&render::RenderArgs::default()),
     }
 }

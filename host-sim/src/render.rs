@@ -1,13 +1,15 @@
-//! `host-sim render`: a contact sheet of shaded spheres, one per model, in f32.
+//! `host-sim render`: the contact sheet of shaded spheres (one per model, f32) and every
+//! built-in figure (the documents' pictures, rendered with the crate's own rasterizer and
+//! models), the f64/f32/f32-fast/fixed comparison sheets, and scenes loaded from TOML files.
 //!
-//! Each tile is a unit sphere at the origin seen orthographically along -z (view direction
-//! `v = +z`, x right, y up). A pixel's surface point is `p = n`; Phong models use the reflection
-//! `r = 2 (n.v) n - v`. Every light sits up-left-front of the sphere, along
+//! The contact sheet: each tile is a unit sphere at the origin seen orthographically along -z
+//! (view direction `v = +z`, x right, y up). A pixel's surface point is `p = n`; Phong models use
+//! the reflection `r = 2 (n.v) n - v`. Every light sits up-left-front of the sphere, along
 //! `L = (-1, 1, 1)/sqrt 3`. Each tile shows the model's value alone (no ambient, no albedo),
 //! scaled so that its brightest pixel is white (the scale is printed under the label as the
 //! tile's peak value), clamped and sRGB-encoded.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use arealight::{
@@ -15,14 +17,10 @@ use arealight::{
     SkyGround, SphereLight, Vec3,
 };
 use clap::Args;
-use embedded_graphics::{
-    mono_font::{ascii::FONT_6X10, MonoTextStyle},
-    pixelcolor::{Rgb888, RgbColor},
-    prelude::{DrawTarget, OriginDimensions, Point, Size},
-    text::{Baseline, Text},
-    Drawable, Pixel,
-};
+use indicatif::{ProgressBar, ProgressStyle};
 use tiny_skia::{Color, Paint, PathBuilder, Pixmap, PremultipliedColorU8, Rect, Stroke, Transform};
+
+use crate::figure::{srgb8, text, Font, BG};
 
 /// The output directory when none is given.
 pub const DEFAULT_OUT: &str = "out";
@@ -30,9 +28,27 @@ pub const DEFAULT_OUT: &str = "out";
 /// Arguments of `host-sim render`.
 #[derive(Args, Debug)]
 pub struct RenderArgs {
-    /// Directory to write contact_sheet.png into (created if missing).
+    /// Directory to write the PNG files into (created if missing).
     #[arg(long, value_name = "DIR", default_value = DEFAULT_OUT)]
     pub out: PathBuf,
+    /// Render only these pictures (comma-separated file stems, e.g.
+    /// `contact_sheet,snyder_fig7,compare_polygon`); all of them by default.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub only: Option<Vec<String>>,
+    /// Render a scene described in a TOML file (lights, materials, meshes, camera) into
+    /// DIR/<file stem>.png instead of the built-in pictures. See host-sim/scenes/example.toml.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
+}
+
+impl Default for RenderArgs {
+    fn default() -> Self {
+        RenderArgs {
+            out: DEFAULT_OUT.into(),
+            only: None,
+            scene: None,
+        }
+    }
 }
 
 const COLS: u32 = 6;
@@ -183,54 +199,6 @@ fn tiles() -> Result<Vec<Tile>, arealight::Error> {
     Ok(t)
 }
 
-/// embedded-graphics drawing onto a tiny-skia pixmap (opaque pixels).
-struct Canvas<'a>(&'a mut Pixmap);
-
-impl OriginDimensions for Canvas<'_> {
-    fn size(&self) -> Size {
-        Size::new(self.0.width(), self.0.height())
-    }
-}
-
-impl DrawTarget for Canvas<'_> {
-    type Color = Rgb888;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
-    where
-        I: IntoIterator<Item = Pixel<Self::Color>>,
-    {
-        let (w, h) = (self.0.width() as i32, self.0.height() as i32);
-        let data = self.0.pixels_mut();
-        for Pixel(pt, c) in pixels {
-            if (0..w).contains(&pt.x) && (0..h).contains(&pt.y) {
-                if let Some(px) = PremultipliedColorU8::from_rgba(c.r(), c.g(), c.b(), 255) {
-                    data[(pt.y * w + pt.x) as usize] = px;
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
-fn text(canvas: &mut Canvas, s: &str, x: i32, y: i32, colour: Rgb888) {
-    let style = MonoTextStyle::new(&FONT_6X10, colour);
-    // Infallible.
-    let _ = Text::with_baseline(s, Point::new(x, y), style, Baseline::Top).draw(canvas);
-}
-
-fn srgb8(x: f32) -> u8 {
-    let x = x.clamp(0.0, 1.0);
-    let e = if x <= 0.003_130_8 {
-        12.92 * x
-    } else {
-        1.055 * x.powf(1.0 / 2.4) - 0.055
-    };
-    (e * 255.0 + 0.5) as u8
-}
-
-const BG: [u8; 3] = [24, 24, 28];
-
 /// Shades one tile into `pix` with its top-left corner at (x0, y0); returns the peak value.
 fn draw_sphere(pix: &mut Pixmap, tile: &Tile, cx: f32, cy: f32) -> f32 {
     let size = (2.0 * RADIUS) as usize + 2;
@@ -288,11 +256,11 @@ fn draw_sphere(pix: &mut Pixmap, tile: &Tile, cx: f32, cy: f32) -> f32 {
     peak
 }
 
-/// Renders the contact sheet and returns the PNG's path.
+/// Renders the contact sheet into `out` and returns the PNG's path.
 ///
 /// # Errors
 /// A message for a scene the library refuses or a file that cannot be written.
-pub fn render(args: &RenderArgs) -> Result<PathBuf, String> {
+pub fn contact_sheet(out: &Path) -> Result<PathBuf, String> {
     let tiles = tiles().map_err(|e| format!("scene refused by the library: {e}"))?;
     let rows = (tiles.len() as u32).div_ceil(COLS);
     let (w, h) = (COLS * TILE_W, HEADER_H + rows * TILE_H);
@@ -333,56 +301,131 @@ pub fn render(args: &RenderArgs) -> Result<PathBuf, String> {
         }
     }
 
-    let mut canvas = Canvas(&mut pix);
     text(
-        &mut canvas,
+        &mut pix,
         "arealight contact sheet - f32, unit sphere, view +z, light along (-1,1,1) (dot)",
         8,
         4,
-        Rgb888::new(230, 230, 230),
+        [230, 230, 230],
+        Font::Small,
     );
     text(
-        &mut canvas,
+        &mut pix,
         "each tile scaled so its peak is white; under the label: parameters (s sigma, a alpha) and peak",
         8,
         15,
-        Rgb888::new(150, 150, 160),
+        [150, 150, 160],
+        Font::Small,
     );
     for (k, (tile, peak)) in tiles.iter().zip(&peaks).enumerate() {
         let (col, row) = (k as u32 % COLS, k as u32 / COLS);
         let (tx, ty) = ((col * TILE_W) as i32, (HEADER_H + row * TILE_H) as i32);
         let y = ty + 10 + 2 * RADIUS as i32 + 8;
         text(
-            &mut canvas,
+            &mut pix,
             tile.label,
             tx + 8,
             y,
-            Rgb888::new(235, 235, 235),
+            [235, 235, 235],
+            Font::Small,
         );
         text(
-            &mut canvas,
+            &mut pix,
             &format!("{:<13}peak {peak:.4}", tile.note),
             tx + 8,
             y + 12,
-            Rgb888::new(150, 150, 160),
+            [150, 150, 160],
+            Font::Small,
         );
     }
 
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
-    let path = args.out.join("contact_sheet.png");
-    pix.save_png(&path)
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-    Ok(path)
+    crate::figure::save(&pix, out, "contact_sheet.png")
 }
 
-/// `host-sim render`.
+/// Writes one picture into the directory given; returns its path.
+type MakeFn = Box<dyn Fn(&Path) -> Result<PathBuf, String>>;
+
+/// One picture `render` can write: its file stem and how to make it.
+struct Job {
+    stem: String,
+    make: MakeFn,
+}
+
+fn jobs() -> Vec<Job> {
+    let mut jobs: Vec<Job> = vec![Job {
+        stem: "contact_sheet".into(),
+        make: Box::new(contact_sheet),
+    }];
+    for fig in crate::scenes::figures() {
+        let file = fig.file;
+        let f = fig.render;
+        jobs.push(Job {
+            stem: file.trim_end_matches(".png").into(),
+            make: Box::new(move |out| {
+                let pix = f().map_err(|e| format!("{file}: scene refused: {e}"))?;
+                crate::figure::save(&pix, out, file)
+            }),
+        });
+    }
+    for (stem, kind) in crate::compare::SHEETS {
+        jobs.push(Job {
+            stem: stem.to_string(),
+            make: Box::new(move |out| crate::compare::sheet(kind, out, stem)),
+        });
+    }
+    jobs
+}
+
+/// Renders what `args` asks for; returns the paths written, in order.
+///
+/// # Errors
+/// A message for an unknown `--only` name, a scene the library refuses, a bad scene file or a
+/// file that cannot be written.
+pub fn render(args: &RenderArgs) -> Result<Vec<PathBuf>, String> {
+    if let Some(file) = &args.scene {
+        return crate::scene_file::render_file(file, &args.out).map(|p| vec![p]);
+    }
+    let mut jobs = jobs();
+    if let Some(only) = &args.only {
+        for name in only {
+            if !jobs.iter().any(|j| &j.stem == name) {
+                let known: Vec<&str> = jobs.iter().map(|j| j.stem.as_str()).collect();
+                return Err(format!(
+                    "unknown picture {name:?}; known: {}",
+                    known.join(", ")
+                ));
+            }
+        }
+        jobs.retain(|j| only.contains(&j.stem));
+    }
+    let bar = ProgressBar::new(jobs.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut paths = Vec::new();
+    for job in &jobs {
+        bar.set_message(job.stem.clone());
+        paths.push((job.make)(&args.out)?);
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    Ok(paths)
+}
+
+/// `host-sim render`: prints each path written, one per line (the contact sheet first).
 pub fn main(args: &RenderArgs) -> std::process::ExitCode {
     let start = Instant::now();
     match render(args) {
-        Ok(path) => {
-            println!("{}", path.display());
-            eprintln!("rendered in {:.3} s", start.elapsed().as_secs_f64());
+        Ok(paths) => {
+            for p in &paths {
+                println!("{}", p.display());
+            }
+            eprintln!(
+                "rendered {} pictures in {:.3} s",
+                paths.len(),
+                start.elapsed().as_secs_f64()
+            );
             std::process::ExitCode::SUCCESS
         }
         Err(e) => {

@@ -32,8 +32,28 @@ fn render_writes_the_contact_sheet_where_asked() {
     );
     let printed = String::from_utf8(out.stdout).unwrap();
     let path = target.join("contact_sheet.png");
-    assert_eq!(printed.trim(), path.display().to_string());
+    let lines: Vec<&str> = printed.lines().collect();
+    assert_eq!(lines[0], path.display().to_string());
     assert_png(&path);
+    // Every figure of the issue, each printed and written.
+    for stem in [
+        "snyder_fig7",
+        "june_fig20_3",
+        "june_fig20_9",
+        "june_fig20_17",
+        "arvo_fig5",
+        "arvo_fig8",
+        "picott_plates",
+        "compare_polygon",
+        "compare_sphere",
+    ] {
+        let p = target.join(format!("{stem}.png"));
+        assert!(
+            lines.contains(&p.display().to_string().as_str()),
+            "{stem} not printed"
+        );
+        assert_png(&p);
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -55,7 +75,12 @@ fn no_arguments_renders_into_out() {
 
 #[test]
 fn every_subcommand_has_help() {
-    for args in [&["--help"][..], &["eval", "--help"], &["render", "--help"]] {
+    for args in [
+        &["--help"][..],
+        &["eval", "--help"],
+        &["render", "--help"],
+        &["plot", "--help"],
+    ] {
         let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
             .args(args)
             .output()
@@ -69,4 +94,60 @@ fn every_subcommand_has_help() {
         .output()
         .unwrap();
     assert!(!out.status.success(), "an unknown backend is a usage error");
+}
+
+#[test]
+fn plot_writes_snyders_figures_2_to_6() {
+    let dir = scratch("plot");
+    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["plot", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for k in 2..=6 {
+        assert_png(&dir.join(format!("snyder_fig{k}.png")));
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn scene_files_render_and_bad_ones_say_where() {
+    let dir = scratch("scene");
+    let example = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/example.toml");
+    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["render", "--scene", example, "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_png(&dir.join("example.png"));
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 10\nheight = 10\nfov = 3\n",
+    )
+    .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["render", "--scene"])
+        .arg(&bad)
+        .arg("--out")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("bad.toml:6:1:") && err.contains("fov"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }
