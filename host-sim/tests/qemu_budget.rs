@@ -1,0 +1,804 @@
+//! The QEMU budget harness (`harness = false`): builds `boards/qemu-budget` for Cortex-M4F
+//! (`thumbv7em-none-eabihf`) and Cortex-M0 (`thumbv6m-none-eabi`), runs it under
+//! `qemu-system-arm` with semihosting, and checks what it prints:
+//!
+//! - the counter self-check (TIM2 of `netduinoplus2` under `-icount shift=0` counts executed
+//!   instructions exactly: a `subs`/`bne` loop of n iterations takes exactly 2n), re-checked
+//!   here from the numbers the firmware prints;
+//! - every model id x backend x input is present, and every value is within the accuracy
+//!   target of the f64 reference computed here from the same (rounded) inputs;
+//! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model).
+//!
+//! It prints the instructions per call (min, median, max over the inputs) and the code size of
+//! each model per target, and writes them to `target/qemu-budget/counts.csv`, which
+//! `host-sim budget` reads.
+//!
+//! Without `qemu-system-arm` it prints SKIPPED and passes, unless the environment variable
+//! `CI` is set, where it fails. Run it alone with `cargo test -p host-sim --test qemu_budget`.
+
+#[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/cases.rs"]
+mod cases;
+#[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/points.rs"]
+mod points;
+
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode, Stdio};
+use std::time::{Duration, Instant};
+
+use arealight::{Fast32, Fixed22, Real};
+use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
+use object::{Object, ObjectSection, ObjectSymbol, SymbolKind};
+
+/// A backend as the host knows it: its name in the firmware's output, the type name in its
+/// kernels' symbols, how inputs are rounded to it, its tolerance, and its f32-exact evaluation
+/// on the host. Adding a backend is one entry in [`backends`] (and one in the firmware).
+struct HostBackend {
+    name: &'static str,
+    /// The targets that run it (`m4f`, `m0`).
+    targets: &'static [&'static str],
+    symbol_type: &'static str,
+    round: fn(f64) -> f64,
+    /// The absolute tolerance against f64 (relative to max(1, |reference|)), per model.
+    tolerance: fn(&str) -> f64,
+    /// The same backend evaluated on the host (for the bit-identity report).
+    host: fn(model: usize) -> Vec<Sample>,
+}
+
+fn round_f32(x: f64) -> f64 {
+    x as f32 as f64
+}
+
+/// The f32 accuracy targets of the README: 2e-6 where well conditioned, plus m 2^-24 for the
+/// Phong-type models (every case here is well conditioned: no point near a polygon's plane
+/// or a sphere's surface).
+fn tol_f32(model: &str) -> f64 {
+    let phong =
+        model.starts_with("phong") || model.starts_with("glossy") || model.ends_with("phong_peak");
+    2e-6 + if phong {
+        f64::from(cases::PHONG_M) * 2f64.powi(-24)
+    } else {
+        0.0
+    }
+}
+
+fn tol_fast(_model: &str) -> f64 {
+    1.0 / 1024.0
+}
+
+fn round_fixed(x: f64) -> f64 {
+    Fixed22::from_f64(x).to_f64()
+}
+
+fn host_eval<T: Backend>(model: usize) -> Vec<Sample> {
+    let mut v = Vec::new();
+    if let Ok(l) = Lights::<T>::new(|x| x) {
+        cases::run_model(&l, model, ring_dirs(), |x| x, &mut Plain, &mut |s| {
+            v.push(s)
+        });
+    }
+    v
+}
+
+fn backends() -> Vec<HostBackend> {
+    vec![
+        HostBackend {
+            name: "f32",
+            targets: &["m4f", "m0"],
+            symbol_type: "f32",
+            round: round_f32,
+            tolerance: tol_f32,
+            host: host_eval::<f32>,
+        },
+        HostBackend {
+            name: "f32-fast",
+            targets: &["m4f", "m0"],
+            symbol_type: "Fast32",
+            round: round_f32,
+            tolerance: tol_fast,
+            host: host_eval::<Fast32>,
+        },
+        HostBackend {
+            name: "fixed",
+            targets: &["m0"],
+            symbol_type: "Fixed22",
+            round: round_fixed,
+            tolerance: tol_fast,
+            host: host_eval::<Fixed22>,
+        },
+    ]
+}
+
+/// The targets: triple, short name, cargo profile, the machine that counts, an optional
+/// machine that runs the same image uncounted (a functional check).
+const TARGETS: [(&str, &str, &str, &str, Option<&str>); 2] = [
+    (
+        "thumbv7em-none-eabihf",
+        "m4f",
+        "release",
+        "netduinoplus2",
+        None,
+    ),
+    (
+        "thumbv6m-none-eabi",
+        "m0",
+        "release-m0",
+        "netduinoplus2",
+        Some("microbit"),
+    ),
+];
+
+struct Plain;
+impl Meter for Plain {
+    fn call<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
+        (f(), 0)
+    }
+}
+
+fn ring_dirs() -> Dirs<'static> {
+    Dirs {
+        count: RING,
+        get: &cases::ring,
+    }
+}
+
+/// The f64 reference of every model, with the inputs rounded as `round` does.
+fn reference(round: fn(f64) -> f64) -> Result<Vec<Vec<Sample>>, String> {
+    let lights = Lights::<f64>::new(round).map_err(|e| format!("f64 lights: {e:?}"))?;
+    Ok((0..MODELS.len())
+        .map(|m| {
+            let mut v = Vec::new();
+            cases::run_model(&lights, m, ring_dirs(), round, &mut Plain, &mut |s| {
+                v.push(s)
+            });
+            v
+        })
+        .collect())
+}
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default()
+}
+
+fn run(cmd: &mut Command, timeout: Duration) -> Result<String, String> {
+    let shown = format!("{cmd:?}");
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("{shown}: {e}"))?;
+    // Drain both pipes while waiting, so a chatty child never blocks on a full pipe.
+    let drain = |pipe: Option<Box<dyn std::io::Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut buf = Vec::new();
+            if let Some(mut p) = pipe {
+                let _ = p.read_to_end(&mut buf);
+            }
+            String::from_utf8_lossy(&buf).into_owned()
+        })
+    };
+    let out = drain(child.stdout.take().map(|p| Box::new(p) as _));
+    let err = drain(child.stderr.take().map(|p| Box::new(p) as _));
+    let start = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break status,
+            Ok(None) if start.elapsed() > timeout => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(format!("{shown}: timed out after {timeout:?}"));
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => return Err(format!("{shown}: {e}")),
+        }
+    };
+    let text = out.join().unwrap_or_default();
+    let errors = err.join().unwrap_or_default();
+    if !status.success() {
+        let tail: Vec<&str> = text.lines().rev().take(5).collect();
+        return Err(format!(
+            "{shown}: {status}\n--- stdout (last lines)\n{}\n--- stderr\n{errors}",
+            tail.into_iter().rev().collect::<Vec<_>>().join("\n"),
+        ));
+    }
+    Ok(text)
+}
+
+fn build(target: &str, profile: &str, target_dir: &Path) -> Result<PathBuf, String> {
+    let dir = root().join("boards/qemu-budget");
+    let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
+    cmd.current_dir(&dir)
+        .args(["build", "--quiet", "--profile", profile, "--target", target])
+        .arg("--target-dir")
+        .arg(target_dir)
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_ENCODED_RUSTFLAGS")
+        .env_remove("CARGO_BUILD_TARGET")
+        .env_remove("CARGO_TARGET_DIR");
+    run(&mut cmd, Duration::from_secs(900)).map_err(|e| {
+        format!("building the firmware for {target} (is the rustup target installed?): {e}")
+    })?;
+    Ok(target_dir.join(target).join(profile).join("qemu-budget"))
+}
+
+fn qemu(machine: &str, elf: &Path) -> Result<String, String> {
+    let mut cmd = Command::new("qemu-system-arm");
+    cmd.args([
+        "-machine",
+        machine,
+        "-nographic",
+        "-monitor",
+        "none",
+        "-serial",
+        "none",
+    ])
+    .args(["-semihosting-config", "enable=on,target=native"])
+    .args(["-icount", "shift=0,align=off,sleep=off"])
+    .arg("-kernel")
+    .arg(elf)
+    .stdin(Stdio::null());
+    run(&mut cmd, Duration::from_secs(120))
+}
+
+/// One parsed `V` line, or `A` line (then `k` is its sample count).
+struct Line {
+    k: Option<usize>,
+    backend: String,
+    model: String,
+    input: usize,
+    count: u32,
+    value: Vec<f64>,
+}
+
+/// The `key=value` pairs of the `SELF` line.
+type SelfCheck = Vec<(String, u32)>;
+
+fn parse(out: &str) -> Result<(Vec<Line>, Option<SelfCheck>), String> {
+    let mut lines = Vec::new();
+    let mut selfcheck = None;
+    let mut done = false;
+    for l in out.lines() {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        match f.first().copied() {
+            Some("V") if f.len() >= 6 => {
+                let num = |s: &str| s.parse::<u32>().map_err(|e| format!("{l}: {e}"));
+                let value = f[5..]
+                    .iter()
+                    .map(|h| u64::from_str_radix(h, 16).map(f64::from_bits))
+                    .collect::<Result<Vec<_>, _>>()
+                    .map_err(|e| format!("{l}: {e}"))?;
+                lines.push(Line {
+                    k: None,
+                    backend: f[1].to_owned(),
+                    model: f[2].to_owned(),
+                    input: num(f[3])? as usize,
+                    count: num(f[4])?,
+                    value,
+                });
+            }
+            Some("A") if f.len() == 7 => {
+                let num = |s: &str| s.parse::<u32>().map_err(|e| format!("{l}: {e}"));
+                let value = u64::from_str_radix(f[6], 16)
+                    .map(f64::from_bits)
+                    .map_err(|e| format!("{l}: {e}"))?;
+                lines.push(Line {
+                    k: Some(num(f[3])? as usize),
+                    backend: f[1].to_owned(),
+                    model: f[2].to_owned(),
+                    input: num(f[4])? as usize,
+                    count: num(f[5])?,
+                    value: vec![value],
+                });
+            }
+            Some("SELF") => {
+                selfcheck = Some(
+                    f[1..]
+                        .iter()
+                        .filter_map(|kv| {
+                            let (k, v) = kv.split_once('=')?;
+                            Some((k.to_owned(), v.parse().ok()?))
+                        })
+                        .collect(),
+                );
+            }
+            Some("FAIL") => return Err(format!("the firmware failed: {l}")),
+            Some("DONE") => done = true,
+            _ => {}
+        }
+    }
+    if !done {
+        return Err("the firmware did not print DONE".into());
+    }
+    Ok((lines, selfcheck))
+}
+
+/// The counter self-check, from the firmware's numbers: `base` is the two TIM2 loads alone,
+/// `n<N>` the same loads around N iterations of `subs`/`bne` (all in assembly). Each must be
+/// exactly `base + 2N`, and the loop lengths must include a long one.
+fn check_counter(s: &[(String, u32)]) -> Result<String, String> {
+    let base = s.iter().find(|(k, _)| k == "base").map(|kv| kv.1);
+    let loops: Vec<(u32, u32)> = s
+        .iter()
+        .filter_map(|(k, v)| Some((k.strip_prefix('n')?.parse().ok()?, *v)))
+        .collect();
+    let shown = s
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    match base {
+        Some(b)
+            if (1..=2).contains(&b)
+                && loops.iter().any(|&(n, _)| n >= 1000)
+                && loops.iter().all(|&(n, c)| c == b + 2 * n) =>
+        {
+            Ok(format!(
+                "loads alone {b}, loops {} (each exactly 2n + {b})",
+                loops
+                    .iter()
+                    .map(|(n, c)| format!("n={n}: {c}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
+        }
+        _ => Err(format!(
+            "counter self-check FAILED ({shown}): a loop of n subs/bne iterations must read \
+             exactly 2n more on TIM2 than the loads alone; TIM2 does not count executed \
+             instructions exactly on this QEMU ({}), so no instruction count can be trusted",
+            qemu_version()
+        )),
+    }
+}
+
+fn qemu_version() -> String {
+    Command::new("qemu-system-arm")
+        .arg("--version")
+        .output()
+        .ok()
+        .and_then(|o| String::from_utf8(o.stdout).ok())
+        .and_then(|s| s.lines().next().map(str::to_owned))
+        .unwrap_or_else(|| "qemu-system-arm not found".into())
+}
+
+/// Code bytes per kernel symbol: the kernel plus every function it reaches by `bl`/`b.w` or
+/// through a function pointer in its literal pool, plus the constant objects those literal
+/// pools point into (each counted once).
+fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
+    let file = object::File::parse(elf).map_err(|e| e.to_string())?;
+    struct Sym {
+        addr: u64,
+        size: u64,
+        name: String,
+        func: bool,
+    }
+    let mut syms: Vec<Sym> = file
+        .symbols()
+        .filter(|s| s.size() > 0 && matches!(s.kind(), SymbolKind::Text | SymbolKind::Data))
+        .map(|s| Sym {
+            addr: s.address() & !1,
+            size: s.size(),
+            name: s
+                .name()
+                .map(|n| format!("{:#}", rustc_demangle::demangle(n)))
+                .unwrap_or_default(),
+            func: s.kind() == SymbolKind::Text,
+        })
+        .collect();
+    syms.sort_by_key(|s| s.addr);
+    syms.dedup_by_key(|s| s.addr);
+    let find = |a: u64| -> Option<usize> {
+        let i = syms.partition_point(|s| s.addr <= a);
+        (i > 0 && a < syms[i - 1].addr + syms[i - 1].size).then(|| i - 1)
+    };
+    let bytes_at = |addr: u64, size: u64| -> Option<Vec<u8>> {
+        file.sections().find_map(|sec| {
+            let (start, len) = (sec.address(), sec.size());
+            if addr >= start && addr + size <= start + len {
+                let data = sec.data().ok()?;
+                let off = (addr - start) as usize;
+                data.get(off..off + size as usize).map(<[u8]>::to_vec)
+            } else {
+                None
+            }
+        })
+    };
+    // The edges of the reference graph.
+    let mut edges: Vec<Vec<usize>> = vec![Vec::new(); syms.len()];
+    for (i, s) in syms.iter().enumerate().filter(|(_, s)| s.func) {
+        let Some(code) = bytes_at(s.addr, s.size) else {
+            continue;
+        };
+        let hw = |k: usize| u32::from(u16::from_le_bytes([code[k], code[k + 1]]));
+        let mut k = 0;
+        while k + 1 < code.len() {
+            let h1 = hw(k);
+            if h1 >> 11 >= 0b11101 && k + 3 < code.len() {
+                let h2 = hw(k + 2);
+                let pc = s.addr + k as u64 + 4;
+                let s_bit = (h1 >> 10) & 1;
+                let (j1, j2) = ((h2 >> 13) & 1, (h2 >> 11) & 1);
+                let target = if h1 >> 11 == 0b11110 && h2 & 0x9000 == 0x9000 {
+                    // BL / B.W (T4): S:I1:I2:imm10:imm11:0, I = NOT(J XOR S).
+                    let i1 = !(j1 ^ s_bit) & 1;
+                    let i2 = !(j2 ^ s_bit) & 1;
+                    let imm = (s_bit << 24)
+                        | (i1 << 23)
+                        | (i2 << 22)
+                        | ((h1 & 0x3FF) << 12)
+                        | ((h2 & 0x7FF) << 1);
+                    Some(((imm << 7) as i32 >> 7) as i64)
+                } else if h1 >> 11 == 0b11110 && h2 & 0xD000 == 0x8000 && (h1 >> 6) & 0xE != 0xE {
+                    // B<cond>.W (T3): S:J2:J1:imm6:imm11:0.
+                    let imm = (s_bit << 20)
+                        | (j2 << 19)
+                        | (j1 << 18)
+                        | ((h1 & 0x3F) << 12)
+                        | ((h2 & 0x7FF) << 1);
+                    Some(((imm << 11) as i32 >> 11) as i64)
+                } else {
+                    None
+                };
+                if let Some(t) = target.and_then(|o| find((pc as i64 + o) as u64)) {
+                    if t != i {
+                        edges[i].push(t);
+                    }
+                }
+                k += 4;
+            } else {
+                k += 2;
+            }
+        }
+        // Literal-pool words pointing at a function (odd: Thumb) or into a constant object.
+        for w in code
+            .chunks_exact(4)
+            .map(|c| u64::from(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+        {
+            let hit = if w & 1 == 1 {
+                find(w & !1).filter(|&t| syms[t].func && syms[t].addr == w & !1)
+            } else {
+                find(w).filter(|&t| !syms[t].func)
+            };
+            if let Some(t) = hit.filter(|&t| t != i) {
+                edges[i].push(t);
+            }
+        }
+    }
+    let mut out = HashMap::new();
+    for (i, s) in syms.iter().enumerate() {
+        if !(s.name.contains("::cases::k_") || s.name.contains("::points::s_")) {
+            continue;
+        }
+        let mut seen = HashSet::from([i]);
+        let mut stack = vec![i];
+        while let Some(j) = stack.pop() {
+            for &t in &edges[j] {
+                if seen.insert(t) {
+                    stack.push(t);
+                }
+            }
+        }
+        out.insert(s.name.clone(), seen.iter().map(|&j| syms[j].size).sum());
+    }
+    Ok(out)
+}
+
+/// The kernel symbol of `model` for the backend whose type is `ty`.
+fn kernel_symbol(sizes: &HashMap<String, u64>, model: &str, ty: &str) -> Option<u64> {
+    let key = format!("::cases::k_{model}::<");
+    sizes.iter().find_map(|(name, &size)| {
+        let rest = name.split_once(&key)?.1;
+        let arg = rest.strip_suffix('>')?;
+        (arg == ty || arg.ends_with(&format!("::{ty}"))).then_some(size)
+    })
+}
+
+#[derive(Default)]
+struct Row {
+    insns: Vec<u32>,
+    code: Option<u64>,
+    max_err: f64,
+    bit_identical: usize,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn check_target(
+    triple: &str,
+    short: &str,
+    profile: &str,
+    machine: &str,
+    functional: Option<&str>,
+    target_dir: &Path,
+    refs: &HashMap<&'static str, Vec<Vec<Sample>>>,
+    rows: &mut BTreeMap<(String, String, usize), Row>,
+) -> Result<(), String> {
+    let elf = build(triple, profile, target_dir)?;
+    let out = qemu(machine, &elf)?;
+    let (lines, selfcheck) = parse(&out)?;
+    let sc = selfcheck.ok_or("no SELF line: the counter self-check did not run")?;
+    let passed = check_counter(&sc)?;
+    println!("{short} ({triple} on {machine}): counter self-check passed: {passed}");
+    let sizes = kernel_sizes(&std::fs::read(&elf).map_err(|e| e.to_string())?)?;
+    let mut failures = Vec::new();
+    let mut seen = HashSet::new();
+    for b in backends()
+        .into_iter()
+        .filter(|b| b.targets.contains(&short))
+    {
+        for (mi, model) in MODELS.iter().enumerate() {
+            if !cases::supports(b.name, model) {
+                continue;
+            }
+            let host = (b.host)(mi);
+            let row = rows
+                .entry((short.to_owned(), b.name.to_owned(), mi))
+                .or_default();
+            row.code = kernel_symbol(&sizes, model, b.symbol_type);
+            if row.code.is_none() {
+                failures.push(format!("{short} {}: no kernel symbol for {model}", b.name));
+            }
+            let refv = &refs[b.name][mi];
+            for l in lines
+                .iter()
+                .filter(|l| l.k.is_none() && l.backend == b.name && l.model == *model)
+            {
+                seen.insert((b.name, mi, l.input));
+                row.insns.push(l.count);
+                let Some(r) = refv.iter().find(|s| s.input == l.input) else {
+                    failures.push(format!("{model}: input {} has no reference", l.input));
+                    continue;
+                };
+                let tol = (b.tolerance)(model);
+                for (c, &v) in l.value.iter().enumerate() {
+                    let want = r.value[c];
+                    let err = (v - want).abs() / want.abs().max(1.0);
+                    row.max_err = row.max_err.max(err);
+                    if err.is_nan() || err > tol {
+                        failures.push(format!(
+                            "{short} {} {model} input {} channel {c}: {v:e} on target, {want:e} \
+                             in f64: error {err:.2e} > {tol:.2e}",
+                            b.name, l.input
+                        ));
+                    }
+                }
+                if host
+                    .iter()
+                    .find(|s| s.input == l.input)
+                    .is_some_and(|h| h.value[..h.channels] == l.value[..])
+                {
+                    row.bit_identical += 1;
+                }
+            }
+            for i in 0..RING {
+                if !seen.contains(&(b.name, mi, i)) {
+                    failures.push(format!("{short} {} {model}: input {i} missing", b.name));
+                }
+            }
+        }
+    }
+    check_points(short, &lines, &sizes, rows, &mut failures);
+    if let Some(m) = functional {
+        let out2 = qemu(m, &elf)?;
+        let (lines2, _) = parse(&out2)?;
+        let differ = lines
+            .iter()
+            .zip(&lines2)
+            .filter(|(a, b)| a.value != b.value || a.model != b.model || a.backend != b.backend)
+            .count();
+        if lines.len() != lines2.len() || differ > 0 {
+            failures.push(format!(
+                "{short}: on {m} the same image gave {} lines, {differ} with other values than on {machine}",
+                lines2.len()
+            ));
+        } else {
+            println!(
+                "{short}: the same image on {m} (a Cortex-M0 model, uncounted) gave the same {} values bit for bit",
+                lines2.len()
+            );
+        }
+    }
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(failures.join("\n"))
+    }
+}
+
+/// The `A` lines (point lights and k-sample alternatives, f32): all present, each within the
+/// f32 target of the same sampler evaluated in f64 on the host.
+fn check_points(
+    short: &str,
+    lines: &[Line],
+    sizes: &HashMap<String, u64>,
+    rows: &mut BTreeMap<(String, String, usize), Row>,
+    failures: &mut Vec<String>,
+) {
+    for k in points::KS {
+        let reference = points::Sampled::<f64>::new(k, cases::PHONG_M);
+        let host = points::Sampled::<f32>::new(k, cases::PHONG_M);
+        for (alt, (name, _)) in points::ALTERNATIVES.iter().enumerate() {
+            let point = name.starts_with("point_");
+            if point && k != 1 {
+                continue;
+            }
+            let (mut want, mut same) = (Vec::new(), Vec::new());
+            points::run_alt(
+                &reference,
+                alt,
+                ring_dirs(),
+                round_f32,
+                &mut Plain,
+                &mut |s| want.push(s.value[0]),
+            );
+            points::run_alt(&host, alt, ring_dirs(), |x| x, &mut Plain, &mut |s| {
+                same.push(s.value[0])
+            });
+            let backend = if point {
+                "f32".to_owned()
+            } else {
+                format!("f32-pts{k}")
+            };
+            let row = rows
+                .entry((short.to_owned(), backend.clone(), MODELS.len() + alt))
+                .or_default();
+            let key = format!("::points::s_{name}::<");
+            row.code = sizes
+                .iter()
+                .find_map(|(n, &b)| (n.contains(&key) && n.ends_with("f32>")).then_some(b));
+            let tol = tol_f32(name);
+            for l in lines
+                .iter()
+                .filter(|l| l.k == Some(k) && l.model == *name && l.backend == "f32")
+            {
+                row.insns.push(l.count);
+                let (w, v) = (want[l.input], l.value[0]);
+                let err = (v - w).abs() / w.abs().max(1.0);
+                row.max_err = row.max_err.max(err);
+                if err.is_nan() || err > tol {
+                    failures.push(format!(
+                        "{short} {name} k={k} input {}: {v:e} on target, {w:e} in f64",
+                        l.input
+                    ));
+                }
+                if same[l.input] == v {
+                    row.bit_identical += 1;
+                }
+            }
+            if row.insns.len() != RING {
+                failures.push(format!(
+                    "{short} {name} k={k}: {} of {RING} inputs",
+                    row.insns.len()
+                ));
+            }
+        }
+    }
+}
+
+/// The name of row `index`: a model id, or an alternative of [`points::ALTERNATIVES`].
+fn row_name(index: usize) -> &'static str {
+    MODELS
+        .get(index)
+        .copied()
+        .or_else(|| points::ALTERNATIVES.get(index - MODELS.len()).map(|a| a.0))
+        .unwrap_or("?")
+}
+
+fn median(v: &[u32]) -> u32 {
+    let mut s = v.to_vec();
+    s.sort_unstable();
+    s.get(s.len() / 2).copied().unwrap_or(0)
+}
+
+fn main() -> ExitCode {
+    // `cargo test -- --list` and filters from a plain `cargo test NAME` must not run QEMU.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.iter().any(|a| a == "--list") {
+        println!("qemu_budget: test");
+        return ExitCode::SUCCESS;
+    }
+    if let Some(filter) = args.iter().find(|a| !a.starts_with('-')) {
+        if !"qemu_budget".contains(filter.as_str()) {
+            println!("0 passed, 0 failed, 1 skipped (filtered out)");
+            return ExitCode::SUCCESS;
+        }
+    }
+    if Command::new("qemu-system-arm")
+        .arg("--version")
+        .output()
+        .is_err()
+    {
+        if std::env::var_os("CI").is_some() {
+            eprintln!("qemu_budget: FAILED: qemu-system-arm is not installed (CI is set; .ci/run installs it)");
+            return ExitCode::FAILURE;
+        }
+        println!("\n*** qemu_budget SKIPPED: qemu-system-arm is not installed ***");
+        println!("*** (apt-get install -y qemu-system-arm; .ci/run does, and there this test fails instead) ***\n");
+        println!("0 passed, 0 failed, 1 skipped");
+        return ExitCode::SUCCESS;
+    }
+    println!("qemu_budget: {}", qemu_version());
+    let out_dir = root().join("target/qemu-budget");
+    let mut refs = HashMap::new();
+    for b in backends() {
+        match reference(b.round) {
+            Ok(r) => {
+                refs.insert(b.name, r);
+            }
+            Err(e) => {
+                eprintln!("qemu_budget: FAILED: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    let mut rows = BTreeMap::new();
+    let mut failed = Vec::new();
+    for (triple, short, profile, machine, functional) in TARGETS {
+        if let Err(e) = check_target(
+            triple,
+            short,
+            profile,
+            machine,
+            functional,
+            &out_dir.join("build"),
+            &refs,
+            &mut rows,
+        ) {
+            failed.push(format!("{short}: {e}"));
+        }
+    }
+    // The table, and counts.csv for `host-sim budget`.
+    let mut csv = String::from(
+        "target,backend,model,insns_min,insns_median,insns_max,code_bytes,max_err,bit_identical_to_host\n",
+    );
+    println!(
+        "\ninstructions per call (exact, QEMU icount; min / median / max over {RING} inputs), \
+         code bytes (kernel + everything it reaches), max error vs f64 (relative to max(1, |v|))"
+    );
+    println!(
+        "{:<4} {:<9} {:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>6}",
+        "tgt", "backend", "model", "min", "median", "max", "bytes", "max err", "ident"
+    );
+    for ((short, backend, mi), row) in &rows {
+        let (mn, md, mx) = (
+            row.insns.iter().min().copied().unwrap_or(0),
+            median(&row.insns),
+            row.insns.iter().max().copied().unwrap_or(0),
+        );
+        let code = row.code.map(|c| c.to_string()).unwrap_or_default();
+        println!(
+            "{short:<4} {backend:<9} {:<24} {mn:>7} {md:>7} {mx:>7} {code:>7} {:>9.2e} {:>3}/{}",
+            row_name(*mi),
+            row.max_err,
+            row.bit_identical,
+            row.insns.len()
+        );
+        let _ = writeln!(
+            csv,
+            "{short},{backend},{},{mn},{md},{mx},{code},{:e},{}",
+            row_name(*mi),
+            row.max_err,
+            row.bit_identical
+        );
+    }
+    if let Err(e) = std::fs::create_dir_all(&out_dir)
+        .and_then(|()| std::fs::write(out_dir.join("counts.csv"), &csv))
+    {
+        failed.push(format!("writing counts.csv: {e}"));
+    } else {
+        println!("\nwrote {}", out_dir.join("counts.csv").display());
+    }
+    if failed.is_empty() {
+        println!("\nqemu_budget: counter self-check and accuracy checks passed on both targets");
+        println!("1 passed, 0 failed");
+        ExitCode::SUCCESS
+    } else {
+        eprintln!("\nqemu_budget FAILED:\n{}", failed.join("\n"));
+        println!("0 passed, 1 failed");
+        ExitCode::FAILURE
+    }
+}
