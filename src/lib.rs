@@ -55,9 +55,9 @@
 #[cfg(feature = "cap")]
 pub mod cap;
 pub mod error;
-pub mod illuminant;
 #[cfg(feature = "hemisphere")]
 pub mod hemisphere;
+pub mod illuminant;
 #[cfg(feature = "line")]
 pub mod line;
 pub mod lobe;
@@ -81,9 +81,9 @@ pub mod vec3;
 #[cfg(feature = "cap")]
 pub use cap::{CapLight, SphereLight};
 pub use error::Error;
-pub use illuminant::{Ambient, DirectionalLight, Illuminant, PointLight, Tinted};
 #[cfg(feature = "hemisphere")]
 pub use hemisphere::{HemisphereLight, OvercastSky, SkyGround};
+pub use illuminant::{Ambient, DirectionalLight, Illuminant, PointLight, Tinted};
 #[cfg(feature = "line")]
 pub use line::{Decay, LineLight, ParallelogramLight};
 pub use lobe::PhongLobe;
@@ -91,10 +91,10 @@ pub use lobe::PhongLobe;
 pub use moments::{lune_normalization, try_lune_normalization};
 #[cfg(feature = "polygon")]
 pub use polygon::PolygonLight;
-pub use real::{Fast32, Real};
-pub use scene::{ObjectBounds, PreparedScene, PushError, Scene, SceneLight};
 #[cfg(feature = "fixed")]
 pub use real::Fixed22;
+pub use real::{Fast32, Real};
+pub use scene::{ObjectBounds, PreparedScene, PushError, Scene, SceneLight};
 #[cfg(feature = "sh9")]
 pub use sh9::{Environment, Sh9, Sh9Irradiance};
 #[cfg(feature = "shaping")]

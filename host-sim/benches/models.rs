@@ -6,8 +6,8 @@
 //! come from the QEMU instruction counter (boards/), not from here.
 
 use arealight::{
-    CapLight, Fast32, Fixed22, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb, Sh9,
-    SkyGround, SphereLight, Vec3,
+    CapLight, Fast32, Fixed22, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb,
+    Sh9, SkyGround, SphereLight, Vec3,
 };
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
@@ -80,7 +80,8 @@ fn bench_backend<T: Real>(c: &mut Criterion, name: &str) {
     }
     // Arvo's moments, full sum against early termination (eq. 21) at two tolerances.
     for m in [8u32, 64] {
-        per_normal!(format!("axial_moment/m={m}"), |w| poly.axial_moment(p, w, m));
+        per_normal!(format!("axial_moment/m={m}"), |w| poly
+            .axial_moment(p, w, m));
         for tol in [1e-6, 1e-3] {
             per_normal!(format!("axial_moment_within/m={m}/tol={tol:e}"), |w| poly
                 .axial_moment_within(p, w, m, T::from_f64(tol)));
