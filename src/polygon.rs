@@ -198,9 +198,9 @@ pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: 
     if !(m > T::ZERO) || !m.is_finite() {
         return T::ZERO;
     }
-    let g = g.div_components(m);
+    let (g, d) = g.rescale(m);
     let s = g.length();
-    let theta = (s * m).atan2(ua.dot(ub));
+    let theta = (s * d).atan2(ua.dot(ub));
     (theta * g.dot(k) / s).finite_or_zero()
 }
 

@@ -184,14 +184,15 @@ pub trait Real:
         let x = self.clamp(-Self::ONE, Self::ONE);
         ((Self::ONE - x) * (Self::ONE + x)).sqrt().atan2(x)
     }
-    /// `[x / m, y / m, z / m]` for `m >= max(|x|, |y|, |z|)`, `m > 0`: the rescaling that lets
-    /// lengths be computed without overflow or underflow. The float types multiply by one
-    /// reciprocal; the fixed-point type divides each component, since `1/m` itself saturates
-    /// for `m < 1/512` while every quotient here is at most 1.
+    /// `(v / d, d)` for `m = max(|x|, |y|, |z|) > 0`: the rescaling that lets lengths be
+    /// computed without overflow or underflow, with the scale `d` it divided by. The float
+    /// types take `d = m` (one reciprocal, three products); the fixed-point type a power of
+    /// two near `m` (exact shifts: `1/m` itself would saturate for `m < 1/512`, and a division
+    /// costs hundreds of instructions on Cortex-M0).
     #[inline(always)]
-    fn div3(v: [Self; 3], m: Self) -> [Self; 3] {
+    fn rescale3(v: [Self; 3], m: Self) -> ([Self; 3], Self) {
         let r = Self::ONE / m;
-        [v[0] * r, v[1] * r, v[2] * r]
+        ([v[0] * r, v[1] * r, v[2] * r], m)
     }
     /// `1/sqrt(self)` for `self > 0`; 0 otherwise (never infinite). The float types compute
     /// `1 / sqrt(x)`; the fixed-point type has its own Newton iteration (no division).

@@ -49,12 +49,12 @@ impl<T: Real> Vec3<T> {
     pub fn length(self) -> T {
         self.dot(self).sqrt()
     }
-    /// Each component divided by `m` (through [`Real::div3`]: exact rescaling for every
-    /// backend, no saturation in fixed point when `m` bounds the components).
+    /// `(self / d, d)` with `d` near `m = self.max_abs() > 0` (through [`Real::rescale3`]:
+    /// `d = m` for the floats, a power of two for fixed point).
     #[inline(always)]
-    pub fn div_components(self, m: T) -> Self {
-        let [x, y, z] = T::div3([self.x, self.y, self.z], m);
-        Vec3::new(x, y, z)
+    pub fn rescale(self, m: T) -> (Self, T) {
+        let ([x, y, z], d) = T::rescale3([self.x, self.y, self.z], m);
+        (Vec3::new(x, y, z), d)
     }
     /// `true` if every component is finite.
     #[inline(always)]
@@ -71,14 +71,14 @@ impl<T: Real> Vec3<T> {
     ///
     /// Scales by the largest component first, so it neither overflows for huge vectors nor
     /// underflows for small ones. Cost: 1 [`Real::rsqrt`] (floats: 1 sqrt and 1 division), the
-    /// rescaling ([`Real::div3`]: 1 division for floats), ~12 other operations.
+    /// rescaling ([`Real::rescale3`]: 1 division for floats, shifts for fixed point), ~12 other operations.
     #[inline]
     pub fn normalize(self) -> Option<Self> {
         let m = self.max_abs();
         if !(m > T::TINY) || !m.is_finite() {
             return None;
         }
-        let s = self.div_components(m);
+        let (s, _) = self.rescale(m);
         Some(s * s.dot(s).rsqrt())
     }
     /// Like [`Vec3::normalize`] but also returns the original length.
@@ -88,9 +88,9 @@ impl<T: Real> Vec3<T> {
         if !(m > T::TINY) || !m.is_finite() {
             return None;
         }
-        let s = self.div_components(m);
+        let (s, d) = self.rescale(m);
         let (len, inv) = s.dot(s).sqrt_rsqrt();
-        Some((s * inv, len * m))
+        Some((s * inv, len * d))
     }
     /// Validating normalization for constructors: `param` names the parameter in the error.
     pub fn try_normalize(self, param: &'static str) -> Result<Self, Error> {

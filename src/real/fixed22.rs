@@ -135,9 +135,13 @@ impl Sub for Fixed22 {
 }
 impl Mul for Fixed22 {
     type Output = Self;
+    /// The product rounded down (as the `fixed` crate's), saturating; through this module's
+    /// 32 x 32 -> 64-bit [`wide_mul`] instead of the `fixed` crate's `i64` product, which is a
+    /// 64 x 64-bit library call on Cortex-M0.
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
-        Fixed22(self.0.saturating_mul(o.0))
+        let p = wide_mul(self.to_bits(), o.to_bits()) >> FRAC;
+        Fixed22::from_bits(p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32)
     }
 }
 impl Div for Fixed22 {
@@ -229,9 +233,31 @@ fn ratio_q30(num: u32, den: u32) -> u32 {
     q
 }
 
-/// `x * y` of two Q30 values (in `i64`), rounded down.
+/// `a * b` exactly, from four 16 x 16-bit products. ARMv6-M (Cortex-M0) has only a
+/// 32 x 32 -> 32-bit multiply, and the compiler's `i64` product is a call to the 64 x 64-bit
+/// `__aeabi_lmul`; this is the 32 x 32 -> 64 product the fixed-point path needs, inline.
+/// (Measured in the QEMU harness: see the module docs.)
+#[inline(always)]
+fn wide_mul(a: i32, b: i32) -> i64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah|, |bh| <= 2^15 and al, bl < 2^16: the cross products fit an i32, the low one a u32.
+    let hh = i64::from(ah * bh);
+    let mid = i64::from(ah * bl) + i64::from(al * bh);
+    let ll = i64::from((al as u32) * (bl as u32));
+    (hh << 32) + (mid << 16) + ll
+}
+
+/// `x * y` of two Q30 values with `|x|, |y| < 2` (so each fits an `i32`), rounded down.
 #[inline(always)]
 fn mul_q30(x: i64, y: i64) -> i64 {
+    debug_assert!(x == i64::from(x as i32) && y == i64::from(y as i32));
+    wide_mul(x as i32, y as i32) >> 30
+}
+
+/// `x * y` of two Q30 values of any size (a 64-bit product).
+#[inline(always)]
+fn mul_q30_i64(x: i64, y: i64) -> i64 {
     (x * y) >> 30
 }
 
@@ -374,10 +400,11 @@ fn rsqrt_bits(x: i32) -> i32 {
     } else {
         &RSQRT_HI_Q30
     };
-    let mut y = horner_q30(c, m);
+    // m reaches 4 (2^32 in Q30): its products take the 64-bit multiply.
+    let mut y = c[0] + mul_q30_i64(c[1] + mul_q30_i64(c[2], m), m);
     for _ in 0..2 {
-        let my2 = mul_q30(m, mul_q30(y, y));
-        y = mul_q30(y, (3 << 30) - my2) >> 1;
+        let my2 = mul_q30_i64(m, mul_q30(y, y));
+        y = mul_q30_i64(y, (3 << 30) - my2) >> 1;
     }
     let s = 12 + sh / 2; // in [-3, 12]
     let r = if s > 0 {
@@ -494,9 +521,22 @@ impl Real for Fixed22 {
         let r = self.rsqrt();
         (self * r, r)
     }
+    /// Scales by a power of two (exact shifts, no division): the largest component lands in
+    /// [1/2, 1) (in [1, 2) for `m >= 128`), and the scale returned is that power of two.
     #[inline]
-    fn div3(v: [Self; 3], m: Self) -> [Self; 3] {
-        [v[0] / m, v[1] / m, v[2] / m]
+    fn rescale3(v: [Self; 3], m: Self) -> ([Self; 3], Self) {
+        let bits = m.to_bits();
+        if bits <= 0 {
+            return (v, Self::ONE);
+        }
+        let top = 31 - bits.leading_zeros() as i32; // 0..=30
+        let k = (21 - top).clamp(-8, 21);
+        let scaled = if k >= 0 {
+            v.map(|x| Fixed22::from_bits(x.to_bits() << k))
+        } else {
+            v.map(|x| Fixed22::from_bits(x.to_bits() >> -k))
+        };
+        (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
     }
     #[inline(always)]
     fn is_nan_like(self) -> bool {
