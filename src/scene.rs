@@ -85,28 +85,52 @@ pub enum SceneLight<T, const N: usize = 8> {
     Sh9(Sh9Irradiance<T>),
 }
 
-/// What a light can reach, in f64, computed once when it is pushed.
+/// What a light can reach, computed once when it is pushed. Stored in f32 (a scene of 16
+/// lights must fit a Cortex-M0's RAM; every test has a margin far above f32's rounding) and
+/// evaluated in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Reach {
     /// Every normal (hemispheres, skies, ambient, SH).
     Everywhere,
     /// A light at infinity: directions within the angle `asin(sin_s)` of `dir`.
-    Direction { dir: [f64; 3], sin_s: f64 },
+    Direction { dir: [f32; 3], sin_s: f32 },
     /// A light inside the sphere `(center, radius)`.
-    Bounded { center: [f64; 3], radius: f64 },
+    Bounded { center: [f32; 3], radius: f32 },
 }
 
-/// A shaped light's beam, in f64: where its factor can be non-zero.
+/// A shaped light's beam (f32, as [`Reach`]): where its factor can be non-zero.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Beam {
-    origin: [f64; 3],
-    dir: [f64; 3],
+    origin: [f32; 3],
+    dir: [f32; 3],
     /// Half-angle of the cone circumscribing the outer rectangle `|x| < A z, |y| < B z`.
-    half_angle: f64,
+    half_angle: f32,
     /// The factor is 0 for `z` below this (`znear - near_edge`) ...
-    z_on: f64,
+    z_on: f32,
     /// ... and above this (`zfar + far_edge`).
-    z_off: f64,
+    z_off: f32,
+}
+
+/// To f32, rounding away from the reachable set's inside: `up` rounds up (radii, cut-off
+/// distances, angles), otherwise down.
+fn f32_of(x: f64, up: bool) -> f32 {
+    let y = x as f32;
+    let y64 = f64::from(y);
+    if up && y64 < x {
+        libm::nextafterf(y, f32::INFINITY)
+    } else if !up && y64 > x {
+        libm::nextafterf(y, f32::NEG_INFINITY)
+    } else {
+        y
+    }
+}
+
+fn v32(v: [f64; 3]) -> [f32; 3] {
+    v.map(|x| x as f32)
+}
+
+fn v64(v: [f32; 3]) -> [f64; 3] {
+    v.map(f64::from)
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -494,11 +518,11 @@ fn reach_of<T: Real, const N: usize>(light: &SceneLight<T, N>) -> Reach {
     match light {
         SceneLight::Ambient(_) => Reach::Everywhere,
         SceneLight::Directional(l) => Reach::Direction {
-            dir: l.direction().to_f64(),
+            dir: v32(l.direction().to_f64()),
             sin_s: 0.0,
         },
         SceneLight::Point(l) => Reach::Bounded {
-            center: l.position().to_f64(),
+            center: v32(l.position().to_f64()),
             radius: 0.0,
         },
         #[cfg(feature = "hemisphere")]
@@ -507,13 +531,13 @@ fn reach_of<T: Real, const N: usize>(light: &SceneLight<T, N>) -> Reach {
         }
         #[cfg(feature = "cap")]
         SceneLight::Cap(l) => Reach::Direction {
-            dir: l.axis().to_f64(),
-            sin_s: libm::sin(l.sigma().to_f64()),
+            dir: v32(l.axis().to_f64()),
+            sin_s: f32_of(libm::sin(l.sigma().to_f64()), true),
         },
         #[cfg(feature = "cap")]
         SceneLight::Sphere(l) => Reach::Bounded {
-            center: l.center().to_f64(),
-            radius: l.radius().to_f64(),
+            center: v32(l.center().to_f64()),
+            radius: f32_of(l.radius().to_f64(), true),
         },
         #[cfg(feature = "polygon")]
         SceneLight::Polygon(l) => {
@@ -529,9 +553,12 @@ fn reach_of<T: Real, const N: usize>(light: &SceneLight<T, N>) -> Reach {
                 let d = sub(v.to_f64(), c);
                 m.max(libm::sqrt(dot(d, d)))
             });
+            let c32 = v32(c);
+            // The sphere about the rounded centre still contains every vertex.
+            let r = r + libm::sqrt(dot(sub(v64(c32), c), sub(v64(c32), c)));
             Reach::Bounded {
-                center: c,
-                radius: r,
+                center: c32,
+                radius: f32_of(r, true),
             }
         }
         #[cfg(feature = "sh9")]
@@ -544,11 +571,11 @@ fn beam_of<T: Real>(u: &Uberlight<T>) -> Beam {
     let [_, _, big_a, big_b, _] = u.shape.params().map(|x| x.to_f64());
     let [_, _, _, znear, zfar, near_edge, far_edge] = u.falloff.params().map(|x| x.to_f64());
     Beam {
-        origin: u.frame.origin().to_f64(),
-        dir: unit(u.frame.direction().to_f64()).unwrap_or([0.0, 0.0, 1.0]),
-        half_angle: libm::atan(libm::hypot(big_a, big_b)),
-        z_on: znear - near_edge,
-        z_off: zfar + far_edge,
+        origin: v32(u.frame.origin().to_f64()),
+        dir: v32(unit(u.frame.direction().to_f64()).unwrap_or([0.0, 0.0, 1.0])),
+        half_angle: f32_of(libm::atan(libm::hypot(big_a, big_b)), true),
+        z_on: f32_of(znear - near_edge, false),
+        z_off: f32_of(zfar + far_edge, true),
     }
 }
 
@@ -557,20 +584,27 @@ fn beam_of<T: Real>(u: &Uberlight<T>) -> Beam {
 const MARGIN: f64 = 1e-4;
 
 fn beam_reaches(b: &Beam, o: &ObjectBounds) -> bool {
-    let d = sub(o.center, b.origin);
+    let (origin, dir) = (v64(b.origin), v64(b.dir));
+    let (z_on, z_off, half_angle) = (
+        f64::from(b.z_on),
+        f64::from(b.z_off),
+        f64::from(b.half_angle),
+    );
+    let d = sub(o.center, origin);
     let dist = libm::sqrt(dot(d, d));
     let slack = MARGIN * (dist + o.radius) + MARGIN;
-    let z = dot(d, b.dir);
-    if z + o.radius < b.z_on - slack || z - o.radius > b.z_off + slack {
+    // The stored direction is unit to f32 rounding (6e-8): far inside the margin.
+    let z = dot(d, dir);
+    if z + o.radius < z_on - slack || z - o.radius > z_off + slack {
         return false;
     }
     if dist <= o.radius + slack {
         return true;
     }
     // Outside the cone: the angle to the object's centre minus its angular radius.
-    let phi = angle([d[0] / dist, d[1] / dist, d[2] / dist], b.dir);
+    let phi = angle([d[0] / dist, d[1] / dist, d[2] / dist], dir);
     let spread = libm::asin((o.radius / dist).min(1.0));
-    phi - spread <= b.half_angle + MARGIN
+    phi - spread <= half_angle + MARGIN
 }
 
 fn horizon_reaches(r: &Reach, o: &ObjectBounds) -> bool {
@@ -580,10 +614,11 @@ fn horizon_reaches(r: &Reach, o: &ObjectBounds) -> bool {
     match *r {
         Reach::Everywhere => true,
         Reach::Direction { dir, sin_s } => {
-            let phi = angle(dir, axis);
-            libm::cos((phi - half).max(0.0)) > -sin_s - MARGIN
+            let phi = angle(v64(dir), axis);
+            libm::cos((phi - half).max(0.0)) > -f64::from(sin_s) - MARGIN
         }
         Reach::Bounded { center, radius } => {
+            let (center, radius) = (v64(center), f64::from(radius));
             let d = sub(center, o.center);
             let dist = libm::sqrt(dot(d, d));
             let slack = MARGIN * (dist + radius + o.radius);

@@ -506,6 +506,45 @@ struct Row {
     bit_identical: usize,
 }
 
+/// Issue 7 on the target: the `S` lines (one object rendered with 16 lights of which 2 reach
+/// it, prepared, against the 2 alone) must show the same frame (equal checksums) for at most
+/// 1.25 times the instructions.
+fn check_scene(short: &str, out: &str, failures: &mut Vec<String>) {
+    let mut got: HashMap<String, (String, u64, String)> = HashMap::new();
+    for l in out.lines() {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        if f.len() == 5 && f[0] == "S" {
+            if let Ok(n) = f[3].parse::<u64>() {
+                got.insert(f[2].to_owned(), (f[1].to_owned(), n, f[4].to_owned()));
+            }
+        }
+    }
+    let (Some(a), Some(b)) = (got.get("16_prepared"), got.get("2_lights")) else {
+        failures.push(format!("{short}: no S lines (the scene cost did not run)"));
+        return;
+    };
+    let ratio = a.1 as f64 / b.1 as f64;
+    println!(
+        "{short} {}: one sphere, 16 lights of which 2 reach it, prepared: {} instructions; the 2 \
+         alone: {} ({ratio:.3}x; bound 1.25x); frames {}",
+        a.0,
+        a.1,
+        b.1,
+        if a.2 == b.2 { "identical" } else { "DIFFER" }
+    );
+    if a.2 != b.2 {
+        failures.push(format!(
+            "{short}: the prepared 16-light frame differs from the 2-light frame ({} vs {})",
+            a.2, b.2
+        ));
+    }
+    if !(ratio <= 1.25) {
+        failures.push(format!(
+            "{short}: 16 lights prepared cost {ratio:.3}x the 2 lights (bound 1.25x)"
+        ));
+    }
+}
+
 #[allow(clippy::too_many_arguments)]
 fn check_target(
     triple: &str,
@@ -582,6 +621,7 @@ fn check_target(
         }
     }
     check_points(short, &lines, &sizes, rows, &mut failures);
+    check_scene(short, &out, &mut failures);
     if let Some(m) = functional {
         let out2 = qemu(m, &elf)?;
         let (lines2, _) = parse(&out2)?;

@@ -13,6 +13,13 @@
 //! A f32 <alternative> <k> <input> <instructions> <value bits as hex>
 //! ```
 //!
+//! then, on the counted machine, the cost of one object rendered with 16 lights of which 2 reach
+//! it (prepared) against the 2 alone ([`scene_cost`]; f32 on the M4F, `Fixed22` on the M0),
+//!
+//! ```text
+//! S <backend> <16_prepared|2_lights> <instructions> <frame checksum>
+//! ```
+//!
 //! plus an `INFO` line, a `SELF` line (the counter self-check) and a final `DONE`.
 //! `host-sim/tests/qemu_budget.rs` builds it, runs it and checks every line.
 //!
@@ -37,6 +44,7 @@
 
 mod cases;
 mod points;
+mod scene_cost;
 
 use core::fmt::Write;
 use core::hint::black_box;
@@ -252,6 +260,7 @@ fn emit(line: &mut Line, backend: &str, s: &Sample) {
 
 /// The point-light and k-sample alternatives (`A <backend> <alternative> <k> <input> <count>
 /// <value>` lines).
+#[inline(never)]
 fn run_points<T: Real, M: Meter>(name: &str, meter: &mut M) {
     let ring = |i| cases::ring(i);
     let dirs = Dirs {
@@ -280,6 +289,9 @@ fn run_points<T: Real, M: Meter>(name: &str, meter: &mut M) {
     }
 }
 
+// Not inlined into `main`: each run's locals (every model's light, the scene) then live only
+// while it runs, instead of adding up in one frame; the Cortex-M0 image has 16 KB of RAM.
+#[inline(never)]
 fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
     let name = T::NAME;
     let lights = match Lights::<T>::new(|x| x) {
@@ -306,6 +318,24 @@ fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
         cases::run_model(&lights, model, dirs, |x| x, meter, &mut |s| {
             emit(&mut out, name, &s)
         });
+    }
+}
+
+/// The `S` lines of [`scene_cost`] for one backend.
+#[inline(never)]
+fn run_scene<T: Real, M: Meter>(name: &str, meter: &mut M) {
+    let mut line = Line::new();
+    match scene_cost::run::<T, M>(meter) {
+        Some([(n16, c16), (n2, c2)]) => {
+            for (what, n, c) in [("16_prepared", n16, c16), ("2_lights", n2, c2)] {
+                let _ = write!(line, "S {name} {what} {n} {c:08x}");
+                line.send();
+            }
+        }
+        None => fail(
+            &mut line,
+            format_args!("{name}: the scene benchmark refused its setup"),
+        ),
     }
 }
 
@@ -339,6 +369,12 @@ fn main() -> ! {
         }
         for_each_backend!(run);
         run_points::<f32, _>("f32", &mut t);
+        // One backend per core (the M0 image must fit the micro:bit's 256 KB): the float path
+        // on the M4F, fixed point on the M0.
+        #[cfg(target_abi = "eabihf")]
+        run_scene::<f32, _>("f32", &mut t);
+        #[cfg(not(target_abi = "eabihf"))]
+        run_scene::<arealight::Fixed22, _>("fixed", &mut t);
     } else {
         let mut m = Uncounted;
         macro_rules! run {
