@@ -28,14 +28,7 @@ use std::time::Instant;
 
 use arealight::{Fast32, Fixed22, Real};
 use clap::Args;
-use embedded_graphics::{
-    mono_font::{ascii::FONT_6X10, MonoTextStyle},
-    pixelcolor::{Rgb888, RgbColor},
-    prelude::{DrawTarget, OriginDimensions, Point, Size},
-    text::{Baseline, Text},
-    Drawable, Pixel,
-};
-use tiny_skia::{Color, Paint, PathBuilder, Pixmap, PremultipliedColorU8, Rect, Stroke, Transform};
+use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
 
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/cases.rs"]
@@ -503,41 +496,9 @@ pub fn markdown(rows: &[Row], counts_found: bool) -> String {
     s
 }
 
-/// embedded-graphics drawing onto a tiny-skia pixmap (opaque pixels).
-struct Canvas<'a>(&'a mut Pixmap);
-
-impl OriginDimensions for Canvas<'_> {
-    fn size(&self) -> Size {
-        Size::new(self.0.width(), self.0.height())
-    }
-}
-
-impl DrawTarget for Canvas<'_> {
-    type Color = Rgb888;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
-    where
-        I: IntoIterator<Item = Pixel<Self::Color>>,
-    {
-        let (w, h) = (self.0.width() as i32, self.0.height() as i32);
-        let data = self.0.pixels_mut();
-        for Pixel(pt, c) in pixels {
-            if (0..w).contains(&pt.x) && (0..h).contains(&pt.y) {
-                if let Some(px) = PremultipliedColorU8::from_rgba(c.r(), c.g(), c.b(), 255) {
-                    data[(pt.y * w + pt.x) as usize] = px;
-                }
-            }
-        }
-        Ok(())
-    }
-}
-
+/// Draws `s` (small font) with its top-left corner at `(x, y)`.
 fn text(pix: &mut Pixmap, s: &str, x: f32, y: f32, c: [u8; 3]) {
-    let style = MonoTextStyle::new(&FONT_6X10, Rgb888::new(c[0], c[1], c[2]));
-    let at = Point::new(x as i32, y as i32);
-    // Infallible.
-    let _ = Text::with_baseline(s, at, style, Baseline::Top).draw(&mut Canvas(pix));
+    crate::figure::text(pix, s, x as i32, y as i32, c, crate::figure::Font::Small);
 }
 
 fn paint(c: [u8; 3]) -> Paint<'static> {

@@ -528,25 +528,8 @@ impl OutLine {
 }
 
 /// The models the fixed-point backend ([`Fixed22`]) answers (issue 3's scope, plus the
-/// uberlight shaping factors).
-pub const FIXED_SUPPORTED: &[&str] = &[
-    "hemi_const",
-    "hemi_cos",
-    "sky_overcast",
-    "sky_ground",
-    "cap_lambert_hermite",
-    "sphere_lambert_hermite",
-    "polygon_lambert",
-    "phong_hemi_const",
-    "phong_hemi_cos",
-    "phong_cap",
-    "phong_sphere",
-    "phong_polygon",
-    "sh9_irradiance",
-    "sh9_disc_irradiance",
-    "superellipse_shape",
-    "distance_falloff",
-];
+/// uberlight shaping factors); the library's list.
+pub const FIXED_SUPPORTED: &[&str] = &arealight::real::fixed22::SUPPORTED_MODELS;
 
 /// The fixed-point type cannot hold NaN, infinities or magnitudes of 512 and more: such an
 /// input gets the error the float backends give for a non-finite value, or a range error,

@@ -484,24 +484,7 @@ fn unsupported_and_unknown_models() {
 }
 
 /// The fixed-point backend's models (issue 3's scope and the shaping factors).
-const FIXED_MODELS: &[&str] = &[
-    "hemi_const",
-    "hemi_cos",
-    "sky_overcast",
-    "sky_ground",
-    "cap_lambert_hermite",
-    "sphere_lambert_hermite",
-    "polygon_lambert",
-    "phong_hemi_const",
-    "phong_hemi_cos",
-    "phong_cap",
-    "phong_sphere",
-    "phong_polygon",
-    "sh9_irradiance",
-    "sh9_disc_irradiance",
-    "superellipse_shape",
-    "distance_falloff",
-];
+const FIXED_MODELS: &[&str] = &arealight::real::fixed22::SUPPORTED_MODELS;
 
 #[test]
 fn fixed_backend_answers_its_models_within_1_1024_and_refuses_the_others() {

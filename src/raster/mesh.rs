@@ -131,13 +131,18 @@ pub fn uv_sphere<T: Real>(
     })
 }
 
+/// A grid of `a` by `b` cells: `(a + 1)(b + 1)` vertices, `2 a b` triangles.
+fn grid_counts(a: u16, b: u16) -> MeshCounts {
+    let (a, b) = (a as usize, b as usize);
+    MeshCounts {
+        vertices: (a + 1) * (b + 1),
+        triangles: 2 * a * b,
+    }
+}
+
 /// Buffer sizes of [`plane`]: `(nx + 1)(nz + 1)` vertices, `2 nx nz` triangles.
 pub fn plane_counts(nx: u16, nz: u16) -> MeshCounts {
-    let (x, z) = (nx as usize, nz as usize);
-    MeshCounts {
-        vertices: (x + 1) * (z + 1),
-        triangles: 2 * x * z,
-    }
+    grid_counts(nx, nz)
 }
 
 /// A `size_x` by `size_z` rectangle in the plane `y = 0`, centred on the origin, facing +y,
@@ -244,11 +249,7 @@ pub fn cuboid<T: Real>(
 
 /// Buffer sizes of [`torus`]: `(major + 1)(minor + 1)` vertices, `2 major minor` triangles.
 pub fn torus_counts(major_segments: u16, minor_segments: u16) -> MeshCounts {
-    let (a, b) = (major_segments as usize, minor_segments as usize);
-    MeshCounts {
-        vertices: (a + 1) * (b + 1),
-        triangles: 2 * a * b,
-    }
+    grid_counts(major_segments, minor_segments)
 }
 
 /// A torus around the y axis: tube centre circle of radius `major`, tube radius `minor`

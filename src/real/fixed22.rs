@@ -54,6 +54,28 @@ use super::Real;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 use fixed::types::I10F22;
 
+/// The model ids of `models.md` that the fixed-point path supports within 1/1024 (the
+/// README's fixed-point table): the eval protocol's `--backend fixed` answers these and
+/// "unsupported" for the others. The other models compile for `Fixed22` too, untested.
+pub const SUPPORTED_MODELS: [&str; 16] = [
+    "hemi_const",
+    "hemi_cos",
+    "sky_overcast",
+    "sky_ground",
+    "cap_lambert_hermite",
+    "sphere_lambert_hermite",
+    "polygon_lambert",
+    "phong_hemi_const",
+    "phong_hemi_cos",
+    "phong_cap",
+    "phong_sphere",
+    "phong_polygon",
+    "sh9_irradiance",
+    "sh9_disc_irradiance",
+    "superellipse_shape",
+    "distance_falloff",
+];
+
 /// Fraction bits of [`Fixed22`].
 const FRAC: u32 = 22;
 
@@ -140,8 +162,7 @@ impl Mul for Fixed22 {
     /// 64 x 64-bit library call on Cortex-M0.
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
-        let p = wide_mul(self.to_bits(), o.to_bits()) >> FRAC;
-        Fixed22::from_bits(p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32)
+        Fixed22::from_bits(mul_bits(self.to_bits(), o.to_bits()))
     }
 }
 impl Div for Fixed22 {
@@ -175,6 +196,13 @@ impl MulAssign for Fixed22 {
     fn mul_assign(&mut self, o: Self) {
         *self = *self * o;
     }
+}
+
+/// `a * b` in Q22, rounded down, saturated.
+#[inline(always)]
+fn mul_bits(a: i32, b: i32) -> i32 {
+    let p = wide_mul(a, b) >> FRAC;
+    p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
 /// `a / b` in Q22, correctly rounded (ties away from zero), saturating; `x / 0` is +-MAX by the

@@ -57,26 +57,8 @@ pub const MODELS: [&str; 27] = [
     "distance_falloff",
 ];
 
-/// The model ids the fixed-point backend (`arealight::Fixed22`) answers: those of the
-/// README's fixed-point table (`FIXED_SUPPORTED` of `host-sim eval`).
-pub const FIXED_MODELS: [&str; 16] = [
-    "hemi_const",
-    "hemi_cos",
-    "sky_overcast",
-    "sky_ground",
-    "cap_lambert_hermite",
-    "sphere_lambert_hermite",
-    "polygon_lambert",
-    "phong_hemi_const",
-    "phong_hemi_cos",
-    "phong_cap",
-    "phong_sphere",
-    "phong_polygon",
-    "sh9_irradiance",
-    "sh9_disc_irradiance",
-    "superellipse_shape",
-    "distance_falloff",
-];
+/// The model ids the fixed-point backend (`arealight::Fixed22`) answers.
+pub use arealight::real::fixed22::SUPPORTED_MODELS as FIXED_MODELS;
 
 /// Whether the backend named `backend` evaluates `model` (`fixed`: [`FIXED_MODELS`] only).
 pub fn supports(backend: &str, model: &str) -> bool {
