@@ -538,7 +538,7 @@ fn check_scene(short: &str, out: &str, failures: &mut Vec<String>) {
             a.2, b.2
         ));
     }
-    if !(ratio <= 1.25) {
+    if ratio.is_nan() || ratio > 1.25 {
         failures.push(format!(
             "{short}: 16 lights prepared cost {ratio:.3}x the 2 lights (bound 1.25x)"
         ));
