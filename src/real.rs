@@ -216,6 +216,18 @@ pub trait Real:
             (Self::ZERO, Self::ZERO)
         }
     }
+    /// `round(clamp01(self) * max)` (NaN as 0): a unit value to an integer level, as pixel
+    /// and depth quantization need. Each type does it in its own arithmetic (the default goes
+    /// through f64, which is soft-float on every Cortex-M).
+    #[inline(always)]
+    fn unit_to_u32(self, max: u32) -> u32 {
+        let v = self.clamp01().to_f64() * f64::from(max) + 0.5;
+        if v >= f64::from(max) {
+            max
+        } else {
+            v as u32
+        }
+    }
     /// `self * self`.
     #[inline(always)]
     fn sq(self) -> Self {
@@ -309,6 +321,11 @@ macro_rules! impl_real_float {
             #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
+            }
+            /// In the type's own arithmetic: `as` saturates (and maps NaN to 0).
+            #[inline(always)]
+            fn unit_to_u32(self, max: u32) -> u32 {
+                ((self.clamp01() * max as $t + 0.5) as u32).min(max)
             }
         }
     };

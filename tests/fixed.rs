@@ -745,3 +745,38 @@ fn rsqrt_within_bound() {
     let (s, r) = fx(4 << 22).sqrt_rsqrt();
     assert_eq!((s.to_f64(), r.to_f64()), (2.0, 0.5));
 }
+
+/// `Real::unit_to_u32` (pixel and depth quantization) on every backend: rounding, clamping,
+/// NaN, and every one of the depth's 65536 levels reachable in fixed point.
+#[test]
+fn unit_to_u32_rounds_and_clamps() {
+    fn check<T: Real>() {
+        for max in [31u32, 63, 255, 65535] {
+            assert_eq!(T::ZERO.unit_to_u32(max), 0);
+            assert_eq!(T::ONE.unit_to_u32(max), max);
+            assert_eq!(T::from_f64(-3.0).unit_to_u32(max), 0);
+            assert_eq!(T::from_f64(7.0).unit_to_u32(max), max);
+            for k in [1u32, 2, max / 3, max / 2, max - 1] {
+                // The centre of level k, and just either side of its rounding boundaries.
+                let x = T::from_f64(k as f64 / max as f64);
+                assert_eq!(
+                    x.unit_to_u32(max),
+                    k,
+                    "{} level {k} of {max}",
+                    core::any::type_name::<T>()
+                );
+            }
+        }
+    }
+    check::<f64>();
+    check::<f32>();
+    check::<F>();
+    assert_eq!(f32::NAN.unit_to_u32(255), 0);
+    assert_eq!(f64::NAN.unit_to_u32(255), 0);
+    // Fixed point: each depth level is reached (the old path saturated at 512 levels).
+    let mut seen = vec![false; 65536];
+    for bits in 0..=(1 << 22) {
+        seen[fx(bits).unit_to_u32(65535) as usize] = true;
+    }
+    assert!(seen.iter().all(|&s| s));
+}

@@ -40,14 +40,9 @@ impl Encoding {
 /// Rounds `x` in [0, 1] (clamped; NaN as 0) to an integer in `0..=max`.
 #[inline]
 pub(crate) fn quantize<T: Real>(x: T, max: u32) -> u32 {
-    let v = (x.clamp01() * T::from_u32(max) + T::HALF).to_f64();
-    if v >= max as f64 {
-        max
-    } else if v > 0.0 {
-        v as u32
-    } else {
-        0
-    }
+    // In T's own arithmetic (no f64: soft-float on Cortex-M), and exact for the depth's
+    // 65535 levels in fixed point, where `T::from_u32(65535)` would saturate.
+    x.unit_to_u32(max)
 }
 
 /// A pixel format the renderer writes: built from three encoded channels in [0, 1].

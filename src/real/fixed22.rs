@@ -544,6 +544,14 @@ impl Real for Fixed22 {
     fn rsqrt(self) -> Self {
         Fixed22::from_bits(rsqrt_bits(self.to_bits()))
     }
+    /// In integers: `(bits max + 2^21) >> 22` from the clamped bits (a 32 x 32 -> 64 product);
+    /// `max` up to 2^16 keeps every level reachable (the format's 2^22 steps per unit).
+    #[inline(always)]
+    fn unit_to_u32(self, max: u32) -> u32 {
+        let bits = self.clamp01().to_bits(); // [0, 2^22]
+        let max = max.min(i32::MAX as u32) as i32;
+        ((wide_mul(bits, max) + (1 << (FRAC - 1))) >> FRAC) as u32
+    }
     #[inline]
     fn sqrt_rsqrt(self) -> (Self, Self) {
         let r = self.rsqrt();
