@@ -1,0 +1,204 @@
+//! arealight on a Raspberry Pi Pico: a sphere and a tumbling torus under a rectangular area
+//! light and an orbiting sphere light, shaded in fixed point (`Fixed22`: the RP2040's
+//! Cortex-M0+ has no FPU) and streamed to a 240x240 ST7789 display in 240x16 bands. Each
+//! frame's time goes to the defmt log (`cargo run --release` with probe-rs prints it).
+//!
+//! Wiring (the Waveshare Pico-LCD-1.3's pins; any 240x240 ST7789 module wired the same way
+//! works): SPI1 with SCK on GP10, MOSI on GP11, CS on GP9, DC on GP8, RST on GP12, backlight
+//! on GP13. See README.md.
+#![no_std]
+#![no_main]
+// Every line here is safe Rust but two, each allowed where it is and explained there.
+#![deny(unsafe_code)]
+
+// The defmt transport (RTT: the probe reads a ring buffer in RAM; no UART needed) ...
+use defmt_rtt as _;
+// ... and the panic handler: prints the panic message through defmt, then halts the core.
+use panic_probe as _;
+
+use arealight::raster::{render_in_bands, Band, DrawStats, RasterError, Rgb565, Shading};
+use arealight::Fixed22;
+use cortex_m::singleton;
+use demo_scene::{Demo, MeshBuffers, VertexCache, BACKGROUND, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
+use embedded_hal::digital::OutputPin;
+use embedded_hal_bus::spi::ExclusiveDevice;
+use hal::clocks::Clock;
+use hal::fugit::RateExtU32;
+use hal::pac;
+use mipidsi::interface::SpiInterface;
+use mipidsi::models::ST7789;
+use mipidsi::options::ColorInversion;
+use mipidsi::Builder;
+use rp2040_hal as hal;
+
+/// The second-stage bootloader. The RP2040's boot ROM copies the first 256 bytes of flash to
+/// SRAM and runs them; this code (for the Pico's W25Q16JV flash, which the W25Q080 loader
+/// drives) sets up execute-in-place from the QSPI flash and jumps to the vector table.
+// `link_section` counts as unsafe code (the linker puts the bytes where the section says);
+// memory.x places `.boot2` at the start of flash, which is exactly what the boot ROM expects.
+#[allow(unsafe_code)]
+#[link_section = ".boot2"]
+#[used]
+pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
+
+/// The Pico's crystal.
+const XTAL_FREQ_HZ: u32 = 12_000_000;
+
+/// Where the shader runs. Per pixel, each of the ~14 000 visible pixels would evaluate
+/// Lambert and Phong for the polygon and the sphere light in fixed point, up to 110 000
+/// instructions on the M0+ (about 10 s per frame); Gouraud evaluates them at the vertices only
+/// (with the vertex cache below, about 500 shader calls per frame) and interpolates the
+/// colours across the triangles (about 2 s per frame: see README.md).
+const SHADING: Shading = Shading::Gouraud;
+
+/// Why a frame failed: the rasterizer refused something or the display did not answer.
+#[derive(Debug)]
+#[allow(dead_code)] // the fields are read through `Debug` (the error log line)
+enum FrameError<E> {
+    Raster(RasterError),
+    Display(E),
+}
+
+// `hal::entry` is cortex-m-rt's `entry` plus a reset of the RP2040's hardware spinlocks (which
+// a debugger reset leaves as they were). It expands to an `unsafe` block, hence the `allow`.
+#[allow(unsafe_code)]
+#[hal::entry]
+fn main() -> ! {
+    run()
+}
+
+/// The program proper, outside the `allow` above.
+fn run() -> ! {
+    defmt::info!("arealight on the RP2040: Fixed22, {}", SHADING);
+
+    // 1. The peripherals, once (the PAC hands them out a single time).
+    let mut pac = pac::Peripherals::take().unwrap();
+
+    // 2. Clocks: the 12 MHz crystal, the system PLL at 125 MHz (core and SPI), the USB PLL at
+    //    48 MHz. The watchdog is only needed for its tick, which drives the timer at 1 MHz.
+    let mut watchdog = hal::Watchdog::new(pac.WATCHDOG);
+    let clocks = hal::clocks::init_clocks_and_plls(
+        XTAL_FREQ_HZ,
+        pac.XOSC,
+        pac.CLOCKS,
+        pac.PLL_SYS,
+        pac.PLL_USB,
+        &mut pac.RESETS,
+        &mut watchdog,
+    )
+    .ok()
+    .unwrap();
+
+    // 3. The 64-bit microsecond timer: frame times, and the delays of the display's reset.
+    let mut timer = hal::Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
+
+    // 4. The GPIO pins (single-cycle IO block for the outputs).
+    let sio = hal::Sio::new(pac.SIO);
+    let pins = hal::gpio::Pins::new(
+        pac.IO_BANK0,
+        pac.PADS_BANK0,
+        sio.gpio_bank0,
+        &mut pac.RESETS,
+    );
+
+    // 5. SPI1 on GP10 (SCK) and GP11 (MOSI), transmit only (the ST7789 is never read), at
+    //    62.5 MHz: the peripheral clock (125 MHz) over 2, the SPI block's fastest. Mode 0 (the
+    //    Pico-LCD-1.3; many bare 240x240 modules without a CS pin want MODE_3 instead).
+    let sclk = pins.gpio10.into_function::<hal::gpio::FunctionSpi>();
+    let mosi = pins.gpio11.into_function::<hal::gpio::FunctionSpi>();
+    let spi_bus = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sclk)).init(
+        &mut pac.RESETS,
+        clocks.peripheral_clock.freq(),
+        62_500_000u32.Hz(),
+        embedded_hal::spi::MODE_0,
+    );
+
+    // 6. The display's control pins: chip select, data/command, reset, backlight.
+    let cs = pins.gpio9.into_push_pull_output();
+    let dc = pins.gpio8.into_push_pull_output();
+    let rst = pins.gpio12.into_push_pull_output();
+    let mut backlight = pins.gpio13.into_push_pull_output();
+
+    // 7. embedded-hal 1.0 splits the bus (clock and data) from the device (the bus plus this
+    //    display's chip select): `ExclusiveDevice` is the device of a bus it alone uses.
+    let spi = ExclusiveDevice::new(spi_bus, cs, timer).unwrap();
+
+    // 8. The ST7789 driver (mipidsi): a 512-byte buffer in which it gathers pixels into SPI
+    //    writes, the reset pin, IPS colour inversion (the Pico-LCD-1.3 panel, like most
+    //    240x240 IPS modules, shows inverted colours without it), 240x240 of the chip's
+    //    240x320 memory. `init` resets the panel and sends the init sequence.
+    let spi_buffer = singleton!(: [u8; 512] = [0; 512]).unwrap();
+    let interface = SpiInterface::new(spi, dc, spi_buffer);
+    let mut display = Builder::new(ST7789, interface)
+        .display_size(WIDTH, HEIGHT)
+        .invert_colors(ColorInversion::Inverted)
+        .reset_pin(rst)
+        .init(&mut timer)
+        .unwrap();
+    backlight.set_high().unwrap();
+
+    // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
+    //    UV sphere and a torus, about 10 KiB) are generated once into a static buffer; the
+    //    camera, materials and draw options are set once. `singleton!` gives a `&'static mut`
+    //    to a static, once (a second call would return `None`). The vertex cache (24 KiB)
+    //    shades each vertex once per frame: without it, Gouraud shading would shade every
+    //    vertex again for each triangle and band that uses it (about 9 times).
+    let buffers = singleton!(: MeshBuffers<Fixed22> = MeshBuffers::new()).unwrap();
+    let cache = singleton!(: VertexCache<Fixed22> = VertexCache::new()).unwrap();
+    let demo = Demo::<Fixed22>::new(buffers, SHADING, Some(cache)).unwrap();
+
+    // 10. One band: 240x16 RGB565 pixels and their 16-bit depths (7.5 KiB each). The whole
+    //     frame is rendered through it, 15 times per frame.
+    let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
+    let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
+    let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
+
+    // 11. The animation: frame n shows phase n / PERIOD; each frame is timed with the 1 MHz
+    //     timer, split into shading (the rasterizer and the light models) and sending (SPI).
+    let mut n: u32 = 0;
+    loop {
+        let start = timer.get_counter();
+        // The lights and transforms of this frame (the lamp's position, the torus's turn).
+        let frame = demo.frame(n).unwrap();
+        let mut stats = DrawStats::default();
+        let (mut shade_us, mut send_us) = (0u64, 0u64);
+        let result = render_in_bands(
+            &mut band,
+            HEIGHT,
+            BACKGROUND,
+            // Draw: the band has been moved to its rows and cleared; draw the scene into it.
+            |band| {
+                let t0 = timer.get_counter();
+                let r = demo.draw_band(&frame, band, &mut stats);
+                shade_us += (timer.get_counter() - t0).to_micros();
+                r.map_err(FrameError::Raster)
+            },
+            // Flush: send the band's rows to the display (one address window, then the
+            // pixels: `Band::flush_to` is one `fill_contiguous` of the display).
+            |band| {
+                let t0 = timer.get_counter();
+                let r = band.flush_to(&mut display);
+                send_us += (timer.get_counter() - t0).to_micros();
+                r.map_err(FrameError::Display)
+            },
+        );
+        if let Err(e) = result {
+            defmt::error!("frame {}: {}", n, defmt::Debug2Format(&e));
+        }
+        let total_us = (timer.get_counter() - start).to_micros();
+        defmt::info!(
+            "frame {=u32}: {=u64} us ({=u64} us shading, {=u64} us SPI), {} shader calls, {} pixels, {} triangle setups",
+            n,
+            total_us,
+            shade_us,
+            send_us,
+            stats.shaded,
+            stats.pixels,
+            stats.rasterized
+        );
+        if n % PERIOD == PERIOD - 1 {
+            defmt::info!("one period ({=u32} frames) done", PERIOD);
+        }
+        n = n.wrapping_add(1);
+    }
+}
