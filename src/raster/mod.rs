@@ -753,6 +753,19 @@ where
             }
         }
         if opts.shading == Shading::Gouraud {
+            // Shade no vertex of a triangle that will not be drawn: an unclipped triangle that
+            // is culled (back-facing) or degenerate is rejected here exactly as
+            // `raster_triangle` would reject it.
+            if all_in {
+                let mut fp = [FixedPoint::default(); 3];
+                for k in 0..3 {
+                    let (x, y) = camera.screen_xy(cv[k].c);
+                    fp[k] = FixedPoint::new(snap(x), snap(y));
+                }
+                if EdgeTriangle::new(fp, opts.cull).is_none() {
+                    continue;
+                }
+            }
             for v in cv.iter_mut() {
                 let view = camera.view_dir(v.p);
                 let n = if opts.two_sided && v.n.dot(view) < T::ZERO {

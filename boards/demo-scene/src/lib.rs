@@ -121,9 +121,10 @@ pub const CACHE_ENTRIES: usize = 1024;
 /// The colours of the vertices shaded in the current frame (Gouraud shading only).
 ///
 /// Why: `raster::draw` shades the three corners of every triangle it draws, again for each
-/// band the triangle touches, so with Gouraud shading each vertex of the mesh is shaded about
-/// 9 times per frame (6 triangles share it, each touches one or two bands; back faces are
-/// shaded before they are culled). In fixed point on a Cortex-M0+, where one shader call (the
+/// band the triangle touches, so with Gouraud shading each vertex of the mesh is shaded several
+/// times per frame (6 triangles share it, each touches one or two bands; since the crate
+/// culls back faces before shading, only the front-facing ones count). In fixed point on a
+/// Cortex-M0+, where one shader call (the
 /// polygon light's Lambert and Phong terms and the sphere light's) costs up to 110 000
 /// instructions, that is more than half of the frame. This cache (an open-addressing hash table keyed by
 /// the exact bits of the transformed position and normal, which are the same every time a
