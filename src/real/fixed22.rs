@@ -158,7 +158,7 @@ impl Sub for Fixed22 {
 impl Mul for Fixed22 {
     type Output = Self;
     /// The product rounded down (as the `fixed` crate's), saturating; through this module's
-    /// 32 x 32 -> 64-bit [`wide_mul`] instead of the `fixed` crate's `i64` product, which is a
+    /// 32 x 32 -> 64-bit `wide_mul` instead of the `fixed` crate's `i64` product, which is a
     /// 64 x 64-bit library call on Cortex-M0.
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
