@@ -228,6 +228,27 @@ pub trait Real:
             v as u32
         }
     }
+    /// `floor(self * 2^frac + 1/2)` (round half up) as an `i32`, saturating at `i32::MIN` /
+    /// `i32::MAX`; NaN gives 0. `frac <= 30`. The rasterizer's bridge from `T` to integers
+    /// (snapped vertices, attribute planes). Exact on every backend while `|self| 2^frac <
+    /// 2^22`; each type does it in its own arithmetic (the default goes through f64).
+    #[inline(always)]
+    fn to_fixed_i32(self, frac: u32) -> i32 {
+        let v = self.to_f64() * f64::from(1u32 << frac.min(30)) + 0.5;
+        let t = v as i32; // saturating, NaN -> 0
+        if f64::from(t) > v {
+            t - 1
+        } else {
+            t
+        }
+    }
+    /// `x * 2^-frac` (`frac <= 30`): the inverse of [`Real::to_fixed_i32`], exact where the
+    /// type holds the value (f32: `|x| < 2^24`; `Fixed22`: `frac >= 22` or no overflow,
+    /// saturating otherwise).
+    #[inline(always)]
+    fn from_fixed_i32(x: i32, frac: u32) -> Self {
+        Self::from_f64(f64::from(x) / f64::from(1u32 << frac.min(30)))
+    }
     /// `self * self`.
     #[inline(always)]
     fn sq(self) -> Self {
@@ -321,6 +342,21 @@ macro_rules! impl_real_float {
             #[inline(always)]
             fn is_finite(self) -> bool {
                 <$t>::is_finite(self)
+            }
+            /// In the type's own arithmetic (scaling by a power of two is exact).
+            #[inline(always)]
+            fn to_fixed_i32(self, frac: u32) -> i32 {
+                let v = self * (1u32 << frac.min(30)) as $t + 0.5;
+                let t = v as i32; // saturating, NaN -> 0
+                if (t as $t) > v {
+                    t - 1
+                } else {
+                    t
+                }
+            }
+            #[inline(always)]
+            fn from_fixed_i32(x: i32, frac: u32) -> Self {
+                x as $t * (1.0 / (1u32 << frac.min(30)) as $t)
             }
             /// In the type's own arithmetic: `as` saturates (and maps NaN to 0).
             #[inline(always)]

@@ -183,6 +183,44 @@ impl EdgeTriangle {
         }
     }
 
+    /// Calls `f(y, first, last)` for every row of `[row0, row1)` that has covered pixels
+    /// (columns `[0, width)`), with the first and last covered column: the pixels
+    /// [`EdgeTriangle::for_each_covered`] visits, row by row, as spans (a triangle is convex,
+    /// so a row's covered pixels are contiguous). The same exact integer tests; each row stops
+    /// at the first uncovered pixel after its span. Cost per row: 6 multiplications; per pixel
+    /// from the box's left edge to the span's end: 3 additions and 3 comparisons.
+    pub fn for_each_span<F: FnMut(i32, i32, i32)>(&self, width: i32, row0: i32, row1: i32, mut f: F) {
+        let Some((x0, y0, x1, y1)) = self.pixel_bounds(width, row0, row1) else {
+            return;
+        };
+        let v = self.v;
+        let step: [i64; 3] = core::array::from_fn(|k| {
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            -(b.y as i64 - a.y as i64) * SUBPIXEL as i64
+        });
+        let bias = self.bias;
+        for y in y0..=y1 {
+            let mut e = self.weights_at(FixedPoint::pixel_centre(x0, y));
+            let mut first = None;
+            let mut x = x0;
+            while x <= x1 {
+                let inside = e[0] + bias[0] >= 0 && e[1] + bias[1] >= 0 && e[2] + bias[2] >= 0;
+                match (inside, first) {
+                    (true, None) => first = Some(x),
+                    (false, Some(_)) => break,
+                    _ => {}
+                }
+                e[0] += step[0];
+                e[1] += step[1];
+                e[2] += step[2];
+                x += 1;
+            }
+            if let Some(first) = first {
+                f(y, first, x - 1);
+            }
+        }
+    }
+
     /// Calls `f(x, y, weights)` for every pixel of columns `[0, width)` and rows
     /// `[row0, row1)` whose centre the fill rule assigns to the triangle, row by row, left to
     /// right; `weights` are the three edge functions at the centre (each >= 0, summing to

@@ -80,13 +80,18 @@ pub mod edge;
 #[cfg(feature = "embedded-graphics")]
 pub mod eg;
 pub mod mesh;
+pub mod prepared;
 pub mod shade;
 pub mod target;
 
 pub use edge::{Cull, EdgeTriangle, FixedPoint};
 pub use mesh::MeshCounts;
 pub use shade::{reflect, Lit, Material, Shader, Shading};
-pub use target::{encode_pixel, Band, Encoding, PixelFormat, Rgb565, Rgb888, DEPTH_FAR};
+pub use prepared::{PreparedMesh, PreparedVertex};
+pub use target::{
+    encode_pixel, Band, EncodeTable, Encoding, PixelFormat, Rgb565, Rgb888, DEPTH_FAR,
+    ENCODE_ENTRIES, ENCODE_INDEX_BITS,
+};
 
 use edge::SUBPIXEL;
 

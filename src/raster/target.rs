@@ -52,6 +52,24 @@ pub trait PixelFormat: Copy {
     fn from_unit<T: Real>(r: T, g: T, b: T) -> Self;
     /// The channels as 8-bit values (expanded by bit replication for fewer bits).
     fn to_rgb8(self) -> [u8; 3];
+    /// The pixel for encoded channels given as 16-bit levels (`0..=65535` for [0, 1]), each
+    /// rounded to the format's bits: what an [`EncodeTable`] hands the rasterizer. Cost: 3
+    /// integer multiply-shifts.
+    #[inline]
+    fn from_levels(r: u16, g: u16, b: u16) -> Self {
+        let unit = |l: u16| f32::from(l) / 65535.0;
+        Self::from_unit(unit(r), unit(g), unit(b))
+    }
+}
+
+/// `round(level * max / 65535)` for a 16-bit level, in integers (`max <= 255`).
+#[inline(always)]
+const fn level_to(level: u16, max: u32) -> u32 {
+    // round(x / 65535) for x = l max < 2^24 without a division: x / 65535 = (x + x / 65536
+    // + ...) / 65536; exact (round half up) for every level with max 31, 63 and 255
+    // (checked exhaustively in tests/raster_prepared.rs).
+    let x = level as u32 * max;
+    (x + (x >> 16) + 32768) >> 16
 }
 
 /// A 16-bit pixel: 5 bits red (high), 6 green, 5 blue (the usual SPI display format, in CPU
@@ -75,6 +93,10 @@ impl PixelFormat for Rgb565 {
             quantize(g, 63) as u8,
             quantize(b, 31) as u8,
         )
+    }
+    #[inline(always)]
+    fn from_levels(r: u16, g: u16, b: u16) -> Self {
+        Rgb565(((level_to(r, 31) << 11) | (level_to(g, 63) << 5) | level_to(b, 31)) as u16)
     }
     #[inline]
     fn to_rgb8(self) -> [u8; 3] {
@@ -101,6 +123,14 @@ impl PixelFormat for Rgb888 {
             quantize(b, 255) as u8,
         ])
     }
+    #[inline(always)]
+    fn from_levels(r: u16, g: u16, b: u16) -> Self {
+        Rgb888([
+            level_to(r, 255) as u8,
+            level_to(g, 255) as u8,
+            level_to(b, 255) as u8,
+        ])
+    }
     #[inline]
     fn to_rgb8(self) -> [u8; 3] {
         self.0
@@ -115,6 +145,54 @@ pub fn encode_pixel<T: Real, P: PixelFormat>(c: Rgb<T>, exposure: T, enc: Encodi
         enc.encode(c.g * exposure),
         enc.encode(c.b * exposure),
     )
+}
+
+/// Fraction bits of the linear colour index of an [`EncodeTable`]: linear 1.0 is index 4096.
+pub const ENCODE_INDEX_BITS: u32 = 12;
+/// Entries of an [`EncodeTable`]: indices `0..=4096`.
+pub const ENCODE_ENTRIES: usize = (1 << ENCODE_INDEX_BITS) + 1;
+
+/// An [`Encoding`] tabulated once: linear colour (after the exposure) in steps of 1/4096 to
+/// 16-bit encoded levels, so that a pixel costs three table loads instead of three transfer
+/// functions (a square root each for [`Encoding::Gamma2`], a `powf` for [`Encoding::Srgb`]:
+/// about 3300 instructions per pixel in `Fixed22` on a Cortex-M0+).
+///
+/// Accuracy: the linear value is rounded to 1/4096 before encoding, so a channel can differ
+/// from [`encode_pixel`]'s by one level of the pixel format where the exact value lies within
+/// 1/8192 of a rounding boundary (`tests/raster_prepared.rs` bounds it by one level over every
+/// input). Size: 8 KiB (4097 16-bit levels); build it once (`static`, `singleton!` or `main`'s
+/// frame) and share it between draw calls. Cost to build: 4097 [`Encoding::encode`] calls.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EncodeTable {
+    encoding: Encoding,
+    levels: [u16; ENCODE_ENTRIES],
+}
+
+impl EncodeTable {
+    /// The table of `encoding`, computed in `T`'s own arithmetic (so firmware and host agree
+    /// bit for bit when they build it with the same `T`).
+    pub fn new<T: Real>(encoding: Encoding) -> Self {
+        let mut levels = [0u16; ENCODE_ENTRIES];
+        for (i, l) in levels.iter_mut().enumerate() {
+            let x = T::from_fixed_i32(i as i32, ENCODE_INDEX_BITS);
+            *l = quantize(encoding.encode(x), u16::MAX as u32) as u16;
+        }
+        EncodeTable { encoding, levels }
+    }
+    /// The encoding tabulated.
+    pub fn encoding(&self) -> Encoding {
+        self.encoding
+    }
+    /// The pixel for linear channels given as indices (1.0 = 4096; clamped to `0..=4096`).
+    /// Cost: 3 clamps, 3 loads, the format's packing.
+    #[inline(always)]
+    pub fn pixel<P: PixelFormat>(&self, r: i32, g: i32, b: i32) -> P {
+        let at = |i: i32| {
+            let i = i.clamp(0, (ENCODE_ENTRIES - 1) as i32) as usize;
+            self.levels.get(i).copied().unwrap_or(u16::MAX)
+        };
+        P::from_levels(at(r), at(g), at(b))
+    }
 }
 
 /// The depth value of a cleared depth band (farthest).
@@ -242,6 +320,23 @@ impl<'a, P: PixelFormat> Band<'a, P> {
     /// `true` if a depth band is attached.
     pub(crate) fn has_depth(&self) -> bool {
         self.depth.is_some()
+    }
+
+    /// Row `y` (frame coordinates) of the pixels and of the depth band, or `None` outside
+    /// the band.
+    #[inline]
+    pub(crate) fn row_mut(&mut self, y: u16) -> Option<(&mut [P], Option<&mut [u16]>)> {
+        if y < self.y0 || y - self.y0 >= self.rows {
+            return None;
+        }
+        let w = self.width as usize;
+        let at = (y - self.y0) as usize * w;
+        let pixels = self.pixels.get_mut(at..at + w)?;
+        let depth = match self.depth.as_deref_mut() {
+            Some(d) => Some(d.get_mut(at..at + w)?),
+            None => None,
+        };
+        Some((pixels, depth))
     }
 
     #[inline]

@@ -183,6 +183,14 @@ impl Real for Fast32 {
         self.0 as f64
     }
     #[inline(always)]
+    fn to_fixed_i32(self, frac: u32) -> i32 {
+        self.0.to_fixed_i32(frac)
+    }
+    #[inline(always)]
+    fn from_fixed_i32(x: i32, frac: u32) -> Self {
+        Fast32(f32::from_fixed_i32(x, frac))
+    }
+    #[inline(always)]
     fn abs(self) -> Self {
         Fast32(<f32 as Real>::abs(self.0))
     }

@@ -544,6 +544,39 @@ impl Real for Fixed22 {
     fn rsqrt(self) -> Self {
         Fixed22::from_bits(rsqrt_bits(self.to_bits()))
     }
+    /// In integers: a rounding shift of the bits (exact).
+    #[inline(always)]
+    fn to_fixed_i32(self, frac: u32) -> i32 {
+        let (bits, frac) = (self.to_bits() as i64, frac.min(30));
+        let v = if frac <= FRAC {
+            let sh = FRAC - frac;
+            if sh == 0 {
+                bits
+            } else {
+                (bits + (1 << (sh - 1))) >> sh
+            }
+        } else {
+            bits << (frac - FRAC)
+        };
+        v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+    }
+    /// In integers: a shift (exact for `frac >= 22`; saturating where the value exceeds the
+    /// range; rounding half up where `frac > 22` drops bits).
+    #[inline(always)]
+    fn from_fixed_i32(x: i32, frac: u32) -> Self {
+        let frac = frac.min(30);
+        let bits = if frac >= FRAC {
+            let sh = frac - FRAC;
+            if sh == 0 {
+                x as i64
+            } else {
+                ((x as i64) + (1 << (sh - 1))) >> sh
+            }
+        } else {
+            (x as i64) << (FRAC - frac)
+        };
+        Fixed22::from_bits(bits.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+    }
     /// In integers: `(bits max + 2^21) >> 22` from the clamped bits (a 32 x 32 -> 64 product);
     /// `max` up to 2^16 keeps every level reachable (the format's 2^22 steps per unit).
     #[inline(always)]

@@ -9,6 +9,12 @@
 //! [`PERIOD`] frames and depends on the frame number only, so every board shows the same
 //! frames, whatever its speed.
 //!
+//! A frame ([`Demo::render_frame`]) is done in stages ([`Stage`]): the frame's lights and
+//! transforms; every vertex transformed and projected once ([`PreparedMesh::transform`]);
+//! with Gouraud shading, the light models at each visible vertex once
+//! ([`PreparedMesh::shade`]); then band by band, scan conversion in integers
+//! ([`PreparedMesh::draw`]) and the band handed to the display.
+//!
 //! Everything fits the fixed-point format: every position (camera, lights, vertices, shading
 //! points) lies within `[-4, 4]` (`Fixed22::COORDINATE_LIMIT`), colours and exposure well
 //! below 512.
@@ -17,11 +23,12 @@
 //! use arealight::raster::{Band, Rgb565, Shading};
 //! use demo_scene::{Demo, MeshBuffers, BACKGROUND, BAND_PIXELS, WIDTH};
 //!
-//! let mut buffers = MeshBuffers::<f32>::new();
-//! let demo = Demo::new(&mut buffers, Shading::PerPixel, None)?;
+//! let mut buffers = Box::new(MeshBuffers::<f32>::new());
+//! let mut demo = Demo::new(&mut buffers, Shading::Gouraud)?;
 //! let (mut pixels, mut depth) = ([Rgb565(0); BAND_PIXELS], [0u16; BAND_PIXELS]);
 //! let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0)?;
 //! let frame = demo.frame(0)?;
+//! demo.prepare(&frame);
 //! band.clear(BACKGROUND);
 //! let mut stats = Default::default();
 //! demo.draw_band(&frame, &mut band, &mut stats)?;
@@ -31,11 +38,9 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
-use core::cell::{Cell, RefCell};
-
 use arealight::raster::{
-    draw, mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, Encoding, Lit, Material, Mesh,
-    Projection, RasterError, Rgb565, Shader, Shading, Vertex,
+    mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
+    Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, Vertex,
 };
 use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, Vec3};
 
@@ -81,15 +86,20 @@ const LAMP_RADIUS: f64 = 0.15;
 const LAMP_ORBIT: f64 = 1.3;
 const LAMP_HEIGHT: f64 = 0.75;
 
-/// The caller's mesh storage (no allocation): one unit UV sphere (drawn twice: the big sphere
-/// and, scaled down, the lamp) and one torus. About 10 KiB with `f32` or `Fixed22` (a vertex
-/// is six 4-byte scalars). Put it in a `static` (e.g. `cortex_m::singleton!`) or in `main`'s
-/// frame, which never returns.
+/// The caller's storage for the scene (no allocation): one unit UV sphere (drawn twice: the
+/// big sphere and, scaled down, the lamp) and one torus, their per-frame vertex data (one
+/// [`PreparedVertex`] per vertex drawn: the sphere's twice) and the encoding table. About
+/// 85 KiB with `f32` or `Fixed22`. Put it in a `static` (e.g. `cortex_m::singleton!`) or on the
+/// heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
     sphere_triangles: [[u16; 3]; SPHERE_TRIANGLES],
     torus_vertices: [Vertex<T>; TORUS_VERTICES],
     torus_triangles: [[u16; 3]; TORUS_TRIANGLES],
+    sphere_frame: [PreparedVertex<T>; SPHERE_VERTICES],
+    torus_frame: [PreparedVertex<T>; TORUS_VERTICES],
+    lamp_frame: [PreparedVertex<T>; SPHERE_VERTICES],
+    table: Option<EncodeTable>,
 }
 
 impl<T: Real> MeshBuffers<T> {
@@ -104,6 +114,10 @@ impl<T: Real> MeshBuffers<T> {
             sphere_triangles: [[0; 3]; SPHERE_TRIANGLES],
             torus_vertices: [Self::ZERO_VERTEX; TORUS_VERTICES],
             torus_triangles: [[0; 3]; TORUS_TRIANGLES],
+            sphere_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
+            torus_frame: [PreparedVertex::EMPTY; TORUS_VERTICES],
+            lamp_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
+            table: None,
         }
     }
 }
@@ -114,128 +128,37 @@ impl<T: Real> Default for MeshBuffers<T> {
     }
 }
 
-/// Entries of a [`VertexCache`]: twice the lit meshes' vertices, so that the table stays at
-/// most half full.
-pub const CACHE_ENTRIES: usize = 1024;
-
-/// The colours of the vertices shaded in the current frame (Gouraud shading only).
-///
-/// Why: `raster::draw` shades the three corners of every triangle it draws, again for each
-/// band the triangle touches, so with Gouraud shading each vertex of the mesh is shaded several
-/// times per frame (6 triangles share it, each touches one or two bands; since the crate
-/// culls back faces before shading, only the front-facing ones count). In fixed point on a
-/// Cortex-M0+, where one shader call (the
-/// polygon light's Lambert and Phong terms and the sphere light's) costs up to 110 000
-/// instructions, that is more than half of the frame. This cache (an open-addressing hash table keyed by
-/// the exact bits of the transformed position and normal, which are the same every time a
-/// vertex is drawn in a frame) shades each vertex once per frame and returns the identical
-/// colour afterwards: the same pixels, about 10 times fewer shader calls. 24 KiB (`f32` or
-/// `Fixed22`: a 64-bit key, a 32-bit frame stamp, three 4-byte channels per entry).
-pub struct VertexCache<T> {
-    entries: [CacheEntry<T>; CACHE_ENTRIES],
-}
-
-#[derive(Clone, Copy)]
-struct CacheEntry<T> {
-    key: u64,
-    /// The frame stamp: an entry of an older frame is free (0: never written).
-    stamp: u32,
-    colour: Rgb<T>,
-}
-
-impl<T: Real> VertexCache<T> {
-    /// An empty cache.
-    pub fn new() -> Self {
-        VertexCache {
-            entries: [CacheEntry {
-                key: 0,
-                stamp: 0,
-                colour: Rgb::splat(T::ZERO),
-            }; CACHE_ENTRIES],
-        }
-    }
-}
-
-impl<T: Real> Default for VertexCache<T> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-/// A shader that looks its colours up in a [`VertexCache`] first (see there).
-struct Cached<'r, 'c, 's, T, S: ?Sized> {
-    shader: &'s S,
-    entries: &'r RefCell<&'c mut [CacheEntry<T>]>,
-    stamp: u32,
-    /// Tells the objects apart (the same point of two objects would have two colours).
-    object: u64,
-}
-
-/// A 64-bit hash of the object and the exact bits of `p` and `n` (multiply and fold, per
-/// component).
-fn vertex_key<T: Real>(object: u64, p: Vec3<T>, n: Vec3<T>) -> u64 {
-    let mut h = object.wrapping_mul(0x9E37_79B9_7F4A_7C15);
-    for x in [p.x, p.y, p.z, n.x, n.y, n.z] {
-        h = (h ^ x.to_f64().to_bits()).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        h ^= h >> 29;
-    }
-    h
-}
-
-impl<T: Real, S: Shader<T> + ?Sized> Shader<T> for Cached<'_, '_, '_, T, S> {
-    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
-        let key = vertex_key(self.object, p, n);
-        let mut entries = self.entries.borrow_mut();
-        let mask = entries.len() - 1;
-        let mut i = key as usize & mask;
-        // Linear probing, at most 16 slots; a crowded table just shades without caching.
-        for _ in 0..16 {
-            let Some(e) = entries.get_mut(i) else { break };
-            if e.stamp == self.stamp && e.key == key {
-                return e.colour;
-            }
-            if e.stamp != self.stamp {
-                let colour = self.shader.shade(p, n, v);
-                *e = CacheEntry {
-                    key,
-                    stamp: self.stamp,
-                    colour,
-                };
-                return colour;
-            }
-            i = (i + 1) & mask;
-        }
-        self.shader.shade(p, n, v)
-    }
-}
-
-/// What stays the same for every frame: camera, meshes, materials, draw options.
+/// The scene: camera, meshes prepared per frame, materials, draw options.
 pub struct Demo<'a, T> {
     camera: Camera<T>,
-    sphere: Mesh<'a, T>,
-    torus: Mesh<'a, T>,
+    sphere: PreparedMesh<'a, 'a, T>,
+    torus: PreparedMesh<'a, 'a, T>,
+    lamp: PreparedMesh<'a, 'a, T>,
     red: Material<T>,
     teal: Material<T>,
     /// Options for the lit objects (the shading mode chosen by the firmware).
     lit: DrawOptions<T>,
-    /// Options for the lamp: an emissive colour, Gouraud (3 closure calls per triangle).
+    /// Options for the lamp: an emissive colour, Gouraud.
     emissive: DrawOptions<T>,
-    /// The vertex colour cache (Gouraud only) and the current frame's stamp.
-    cache: Option<RefCell<&'a mut [CacheEntry<T>]>>,
-    stamp: Cell<u32>,
+    /// Gamma 2 (one square root per channel; within 0.05 of sRGB), tabulated.
+    table: &'a EncodeTable,
 }
 
-/// What changes from frame to frame: the lights and the objects' transforms, and which rows of
-/// the screen each object can cover (so that bands it cannot reach skip it entirely).
+/// What changes from frame to frame: the lights and the objects' transforms.
 pub struct Frame<T> {
     lights: Scene<T, 3, 4>,
     lamp_colour: Rgb<T>,
-    /// This frame's stamp in the vertex cache.
-    stamp: u32,
     /// Model transforms of the sphere, the torus and the lamp.
     transforms: [Affine<T>; 3],
-    /// Screen rows `[top, bottom)` each object can cover.
-    rows: [(i32, i32); 3],
+}
+
+/// The lamp's shader: its colour, whatever the normal.
+struct Glow<T>(Rgb<T>);
+
+impl<T: Real> arealight::raster::Shader<T> for Glow<T> {
+    fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+        self.0
+    }
 }
 
 fn v3<T: Real>(v: [f64; 3]) -> Vec3<T> {
@@ -243,37 +166,48 @@ fn v3<T: Real>(v: [f64; 3]) -> Vec3<T> {
 }
 
 impl<'a, T: Real> Demo<'a, T> {
-    /// Fills `buffers` with the meshes and sets up the camera and materials. `shading`:
-    /// [`Shading::PerPixel`] (every visible pixel runs both lights' Lambert and Phong models:
-    /// the area lights' soft highlights, slow) or [`Shading::Gouraud`] (the models at the
-    /// vertices only: much cheaper, coarser). With Gouraud shading, a [`VertexCache`] makes
-    /// it shade each vertex once per frame instead of about 9 times (see there); it is unused
-    /// per pixel.
+    /// Fills `buffers` with the meshes and the encoding table and sets up the camera and
+    /// materials. `shading`: [`Shading::PerPixel`] (every visible pixel runs both lights'
+    /// Lambert and Phong models: the area lights' soft highlights, slow) or
+    /// [`Shading::Gouraud`] (the models at the visible vertices only, once per frame each:
+    /// much cheaper, coarser).
     ///
     /// # Errors
     /// None with the constants above; the mesh generators' and constructors' errors otherwise.
-    pub fn new(
-        buffers: &'a mut MeshBuffers<T>,
-        shading: Shading,
-        cache: Option<&'a mut VertexCache<T>>,
-    ) -> Result<Self, RasterError> {
+    pub fn new(buffers: &'a mut MeshBuffers<T>, shading: Shading) -> Result<Self, RasterError> {
+        let MeshBuffers {
+            sphere_vertices,
+            sphere_triangles,
+            torus_vertices,
+            torus_triangles,
+            sphere_frame,
+            torus_frame,
+            lamp_frame,
+            table,
+        } = buffers;
         let sphere = mesh::uv_sphere(
             T::ONE,
             SPHERE_STACKS,
             SPHERE_SLICES,
-            &mut buffers.sphere_vertices,
-            &mut buffers.sphere_triangles,
+            sphere_vertices,
+            sphere_triangles,
         )?;
         let torus = mesh::torus(
             T::from_f64(TORUS_MAJOR_RADIUS),
             T::from_f64(TORUS_MINOR_RADIUS),
             TORUS_MAJOR,
             TORUS_MINOR,
-            &mut buffers.torus_vertices,
-            &mut buffers.torus_triangles,
+            torus_vertices,
+            torus_triangles,
         )?;
-        // From here on the buffers are only read.
-        let buffers: &'a MeshBuffers<T> = buffers;
+        let sphere = Mesh::new(
+            &sphere_vertices[..sphere.vertices],
+            &sphere_triangles[..sphere.triangles],
+        )?;
+        let torus = Mesh::new(
+            &torus_vertices[..torus.vertices],
+            &torus_triangles[..torus.triangles],
+        )?;
         let camera = Camera::new(
             v3([0.0, 0.8, 3.3]),
             v3([0.0, 0.05, 0.0]),
@@ -288,21 +222,17 @@ impl<'a, T: Real> Demo<'a, T> {
         .with_depth_range(T::from_f64(1.0), T::from_f64(6.0))?;
         let mut lit = DrawOptions::new(shading);
         lit.cull = Cull::Back;
-        // Gamma 2 (one square root per channel) instead of sRGB (a powf per channel: an exp
-        // and a ln, costly in fixed point); within 0.05 of sRGB.
+        // Gamma 2 (a square root per channel) instead of sRGB (a powf per channel), within
+        // 0.05 of sRGB; through a table either way, so only its 4097 entries pay for it.
         lit.encoding = Encoding::Gamma2;
         let mut emissive = DrawOptions::new(Shading::Gouraud);
         emissive.encoding = Encoding::Gamma2;
+        let table: &'a EncodeTable = table.insert(EncodeTable::new::<T>(Encoding::Gamma2));
         Ok(Demo {
             camera,
-            sphere: Mesh::new(
-                &buffers.sphere_vertices[..sphere.vertices],
-                &buffers.sphere_triangles[..sphere.triangles],
-            )?,
-            torus: Mesh::new(
-                &buffers.torus_vertices[..torus.vertices],
-                &buffers.torus_triangles[..torus.triangles],
-            )?,
+            sphere: PreparedMesh::new(sphere, sphere_frame)?,
+            torus: PreparedMesh::new(torus, torus_frame)?,
+            lamp: PreparedMesh::new(sphere, lamp_frame)?,
             // Red plastic with a broad highlight, teal with a tighter one.
             red: Material::new(
                 Rgb::from_f64([0.85, 0.22, 0.12]),
@@ -316,11 +246,7 @@ impl<'a, T: Real> Demo<'a, T> {
             )?,
             lit,
             emissive,
-            cache: match shading {
-                Shading::Gouraud => cache.map(|c| RefCell::new(&mut c.entries[..])),
-                Shading::PerPixel => None,
-            },
-            stamp: Cell::new(0),
+            table,
         })
     }
 
@@ -384,54 +310,43 @@ impl<'a, T: Real> Demo<'a, T> {
         let lamp_scale = T::from_f64(LAMP_RADIUS);
         let lamp = Affine::scale(Vec3::new(lamp_scale, lamp_scale, lamp_scale))?
             .then(&Affine::translation(lamp_at)?);
-
-        let rows = [
-            self.rows_of(v3(SPHERE_AT), SPHERE_RADIUS),
-            self.rows_of(v3(TORUS_AT), TORUS_MAJOR_RADIUS + TORUS_MINOR_RADIUS),
-            self.rows_of(lamp_at, LAMP_RADIUS),
-        ];
-        // A new stamp: every cached colour of the previous frames is stale (0 is never used).
-        let stamp = match self.stamp.get().wrapping_add(1) {
-            0 => 1,
-            s => s,
-        };
-        self.stamp.set(stamp);
         Ok(Frame {
             lights,
             lamp_colour,
-            stamp,
             transforms: [sphere, torus, lamp],
-            rows,
         })
     }
 
-    /// The screen rows a sphere of `radius` about `centre` can cover: the projections of the
-    /// 8 corners of its bounding cube (a convex hull containing the sphere's), one pixel of
-    /// margin; all rows if a corner is behind the near plane.
-    fn rows_of(&self, centre: Vec3<T>, radius: f64) -> (i32, i32) {
-        let r = T::from_f64(radius);
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for k in 0..8 {
-            let pick = |bit: u32| if k & bit != 0 { r } else { -r };
-            let corner = centre + Vec3::new(pick(1), pick(2), pick(4));
-            match self.camera.project(corner) {
-                Some((_, y)) => {
-                    let y = y.to_f64();
-                    lo = lo.min(y);
-                    hi = hi.max(y);
-                }
-                None => return (0, HEIGHT as i32),
-            }
-        }
-        // A NaN (a degenerate projection) or no corner: every row.
-        if lo.is_nan() || hi.is_nan() || lo > hi {
-            return (0, HEIGHT as i32);
-        }
-        ((lo - 1.0) as i32, (hi + 2.0) as i32)
+    /// Transforms and projects every vertex of the three objects for `frame` ([`Stage::Transform`]).
+    pub fn transform(&mut self, frame: &Frame<T>) {
+        let [s, t, l] = &frame.transforms;
+        self.sphere.transform(&self.camera, s);
+        self.torus.transform(&self.camera, t);
+        self.lamp.transform(&self.camera, l);
     }
 
-    /// Draws frame `frame` into `band` (cleared by the caller), adding what the draw calls did
-    /// to `stats`. Objects whose rows miss the band are skipped without touching a vertex.
+    /// Gouraud: shades the visible vertices of the three objects once each
+    /// ([`Stage::Shade`]); per pixel: only the lamp's (its constant colour). Returns the
+    /// number of shader calls.
+    pub fn shade(&mut self, frame: &Frame<T>) -> u32 {
+        let camera = &self.camera;
+        let red = Lit::new(&frame.lights, &self.red);
+        let teal = Lit::new(&frame.lights, &self.teal);
+        let glow = Glow(frame.lamp_colour);
+        self.sphere.shade(camera, &red, &self.lit)
+            + self.torus.shade(camera, &teal, &self.lit)
+            + self.lamp.shade(camera, &glow, &self.emissive)
+    }
+
+    /// [`Demo::transform`] then [`Demo::shade`].
+    pub fn prepare(&mut self, frame: &Frame<T>) -> u32 {
+        self.transform(frame);
+        self.shade(frame)
+    }
+
+    /// Draws the prepared frame (after [`Demo::prepare`] with the same `frame`) into `band`
+    /// (cleared by the caller), adding what the draw calls did to `stats`. Objects whose rows
+    /// miss the band are skipped without touching a triangle.
     ///
     /// # Errors
     /// [`RasterError::BadSize`] if the band is not [`WIDTH`] wide.
@@ -441,61 +356,143 @@ impl<'a, T: Real> Demo<'a, T> {
         band: &mut Band<'_, Rgb565>,
         stats: &mut DrawStats,
     ) -> Result<(), RasterError> {
-        let (top, bottom) = (band.y0() as i32, band.y0() as i32 + band.rows() as i32);
-        let touches = |i: usize| frame.rows[i].0 < bottom && frame.rows[i].1 > top;
         let mut add = |s: DrawStats| {
             stats.triangles += s.triangles;
             stats.rasterized += s.rasterized;
             stats.shaded += s.shaded;
             stats.pixels += s.pixels;
         };
-        let objects = [(&self.sphere, &self.red), (&self.torus, &self.teal)];
-        for (i, (mesh, material)) in objects.into_iter().enumerate() {
-            if !touches(i) {
-                continue;
-            }
-            let lit = Lit::new(&frame.lights, material);
-            let s = match &self.cache {
-                Some(entries) => {
-                    let cached = Cached {
-                        shader: &lit,
-                        entries,
-                        stamp: frame.stamp,
-                        object: i as u64,
-                    };
-                    draw(
-                        &self.camera,
-                        band,
-                        mesh,
-                        &frame.transforms[i],
-                        &cached,
-                        &self.lit,
-                    )?
-                }
-                None => draw(
-                    &self.camera,
-                    band,
-                    mesh,
-                    &frame.transforms[i],
-                    &lit,
-                    &self.lit,
-                )?,
-            };
-            add(s);
-        }
-        if touches(2) {
-            // The lamp itself: its colour, whatever the normal.
-            let glow = frame.lamp_colour;
-            let shader = move |_p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>| glow;
-            add(draw(
-                &self.camera,
-                band,
-                &self.sphere,
-                &frame.transforms[2],
-                &shader,
-                &self.emissive,
-            )?);
-        }
+        let camera = &self.camera;
+        let red = Lit::new(&frame.lights, &self.red);
+        let teal = Lit::new(&frame.lights, &self.teal);
+        add(self
+            .sphere
+            .draw(camera, band, &red, &self.lit, self.table)?);
+        add(self
+            .torus
+            .draw(camera, band, &teal, &self.lit, self.table)?);
+        let glow = Glow(frame.lamp_colour);
+        add(self
+            .lamp
+            .draw(camera, band, &glow, &self.emissive, self.table)?);
         Ok(())
+    }
+}
+
+/// The stages of a frame, as the boards time them (each firmware reads its own cycle counter
+/// between them: SysTick on the RP2040, DWT on the STM32F411, TIM2 instructions under QEMU).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// The frame's lights and transforms ([`Demo::frame`]).
+    Setup = 0,
+    /// Vertices through the model transform and the camera, once per frame.
+    Transform = 1,
+    /// The light models at the vertices (Gouraud), once per frame.
+    Shade = 2,
+    /// Scan conversion, interpolation, depth test, per-pixel shading (if chosen) and encoding,
+    /// band by band.
+    Raster = 3,
+    /// Sending the bands to the display.
+    Flush = 4,
+}
+
+impl Stage {
+    /// Every stage, in frame order.
+    pub const ALL: [Stage; 5] = [
+        Stage::Setup,
+        Stage::Transform,
+        Stage::Shade,
+        Stage::Raster,
+        Stage::Flush,
+    ];
+    /// The stage's name in logs and tables.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Stage::Setup => "setup",
+            Stage::Transform => "transform",
+            Stage::Shade => "shade",
+            Stage::Raster => "raster",
+            Stage::Flush => "flush",
+        }
+    }
+}
+
+/// What [`Demo::render_frame`] measured: the clock's ticks per [`Stage`] (indexed by
+/// `Stage as usize`) and the draw calls' statistics.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameReport {
+    /// Clock ticks spent in each stage.
+    pub ticks: [u32; 5],
+    /// What the draw calls did.
+    pub stats: DrawStats,
+}
+
+impl FrameReport {
+    /// The sum of all stages.
+    pub fn total(&self) -> u32 {
+        self.ticks.iter().fold(0u32, |a, &t| a.wrapping_add(t))
+    }
+}
+
+/// Why a frame failed: the rasterizer refused something or the display did not answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameError<E> {
+    /// The rasterizer's error.
+    Raster(RasterError),
+    /// The flush callback's error (the display's).
+    Flush(E),
+}
+
+impl<E> From<RasterError> for FrameError<E> {
+    fn from(e: RasterError) -> Self {
+        FrameError::Raster(e)
+    }
+}
+
+impl<'a, T: Real> Demo<'a, T> {
+    /// Renders frame `n` through `band` (a [`WIDTH`]-wide band of any height), calling `flush`
+    /// with each finished band, top to bottom, and `clock` (any free-running tick counter:
+    /// core cycles, instructions, microseconds; wrapping) between the stages, whose ticks it
+    /// returns. This is the whole frame of every board and of the host reference.
+    ///
+    /// # Errors
+    /// The first error of the rasterizer or of `flush`.
+    pub fn render_frame<E>(
+        &mut self,
+        n: u32,
+        band: &mut Band<'_, Rgb565>,
+        clock: &mut impl FnMut() -> u32,
+        mut flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
+    ) -> Result<FrameReport, FrameError<E>> {
+        let mut report = FrameReport::default();
+        let mut last = clock();
+        let mut lap = |stage: Stage, ticks: &mut [u32; 5]| {
+            let now = clock();
+            let t = &mut ticks[stage as usize];
+            *t = t.wrapping_add(now.wrapping_sub(last));
+            last = now;
+        };
+        let frame = self.frame(n)?;
+        lap(Stage::Setup, &mut report.ticks);
+        self.transform(&frame);
+        lap(Stage::Transform, &mut report.ticks);
+        let mut stats = DrawStats {
+            shaded: self.shade(&frame),
+            ..DrawStats::default()
+        };
+        lap(Stage::Shade, &mut report.ticks);
+        let rows = band.rows().max(1);
+        let mut y0: u16 = 0;
+        while y0 < HEIGHT {
+            band.move_to(y0);
+            band.clear(BACKGROUND);
+            self.draw_band(&frame, band, &mut stats)?;
+            lap(Stage::Raster, &mut report.ticks);
+            flush(band).map_err(FrameError::Flush)?;
+            lap(Stage::Flush, &mut report.ticks);
+            y0 = y0.saturating_add(rows);
+        }
+        report.stats = stats;
+        Ok(report)
     }
 }

@@ -2,42 +2,41 @@
 //! RP2040 path), band by band exactly as the boards do, and checks that they show the scene
 //! and agree. `DEMO_SCENE_PPM=dir cargo test -- --nocapture` also writes the frames as PPM.
 
-use arealight::raster::{render_in_bands, Band, DrawStats, RasterError, Rgb565, Shading};
+use arealight::raster::{Band, DrawStats, Rgb565, Shading};
 use arealight::{Fixed22, Real};
-use demo_scene::{Demo, MeshBuffers, VertexCache, BACKGROUND, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
+use demo_scene::{Demo, MeshBuffers, BACKGROUND, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 
 const FRAME_PIXELS: usize = WIDTH as usize * HEIGHT as usize;
 
-fn render<T: Real>(
+/// Frame `n` rendered as the boards render it (`Demo::render_frame`) through a band of `rows`
+/// rows (after an earlier frame, so that the per-frame vertex data holds stale values).
+fn render_rows<T: Real>(
     shading: Shading,
-    cached: bool,
     n: u32,
+    rows: u16,
 ) -> (Vec<Rgb565>, DrawStats, std::time::Duration) {
-    let mut buffers = MeshBuffers::<T>::new();
-    let mut cache = Box::new(VertexCache::<T>::new());
-    let demo = Demo::new(&mut buffers, shading, cached.then_some(&mut *cache)).unwrap();
-    // An earlier frame first, so that the cache holds stale entries.
-    demo.frame(n + 7).unwrap();
-    let (mut pixels, mut depth) = ([Rgb565(0); BAND_PIXELS], [0u16; BAND_PIXELS]);
+    let mut buffers = Box::new(MeshBuffers::<T>::new());
+    let mut demo = Demo::new(&mut buffers, shading).unwrap();
+    let rows_px = WIDTH as usize * rows as usize;
+    let (mut pixels, mut depth) = (vec![Rgb565(0); rows_px], vec![0u16; rows_px]);
     let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0).unwrap();
     let mut out = vec![Rgb565(0); FRAME_PIXELS];
-    let mut stats = DrawStats::default();
+    demo.render_frame(n + 7, &mut band, &mut || 0, |_| Ok::<(), ()>(()))
+        .unwrap();
     let start = std::time::Instant::now();
-    let frame = demo.frame(n).unwrap();
-    render_in_bands(
-        &mut band,
-        HEIGHT,
-        BACKGROUND,
-        |b| demo.draw_band(&frame, b, &mut stats),
-        |b| {
+    let report = demo
+        .render_frame(n, &mut band, &mut || 0, |b| {
             let at = b.y0() as usize * WIDTH as usize;
             let len = b.pixels().len().min(FRAME_PIXELS - at);
             out[at..at + len].copy_from_slice(&b.pixels()[..len]);
-            Ok::<(), RasterError>(())
-        },
-    )
-    .unwrap();
-    (out, stats, start.elapsed())
+            Ok::<(), ()>(())
+        })
+        .unwrap();
+    (out, report.stats, start.elapsed())
+}
+
+fn render<T: Real>(shading: Shading, n: u32) -> (Vec<Rgb565>, DrawStats, std::time::Duration) {
+    render_rows::<T>(shading, n, (BAND_PIXELS / WIDTH as usize) as u16)
 }
 
 fn channels(p: Rgb565) -> [i32; 3] {
@@ -64,9 +63,8 @@ fn write_ppm(name: &str, pixels: &[Rgb565]) {
 fn frames_show_the_scene_and_fixed_point_agrees_with_f32() {
     for shading in [Shading::PerPixel, Shading::Gouraud] {
         for n in [0, PERIOD / 4, PERIOD / 2, 3 * PERIOD / 4] {
-            let cached = shading == Shading::Gouraud;
-            let (f, fs, ft) = render::<f32>(shading, cached, n);
-            let (x, xs, xt) = render::<Fixed22>(shading, cached, n);
+            let (f, fs, ft) = render::<f32>(shading, n);
+            let (x, xs, xt) = render::<Fixed22>(shading, n);
             let covered = f.iter().filter(|&&p| p != BACKGROUND).count();
             let (mut differ, mut max) = (0, 0);
             for (a, b) in f.iter().zip(&x) {
@@ -97,13 +95,19 @@ fn frames_show_the_scene_and_fixed_point_agrees_with_f32() {
 }
 
 #[test]
-fn the_vertex_cache_changes_no_pixel() {
-    for n in [0, PERIOD / 3] {
-        let (a, sa, _) = render::<Fixed22>(Shading::Gouraud, false, n);
-        let (b, sb, _) = render::<Fixed22>(Shading::Gouraud, true, n);
-        assert!(a == b, "frame {n}");
-        assert_eq!(sa.pixels, sb.pixels);
-        println!("frame {n}: shader calls without the cache {}, with it (counted by draw, hits included) {}", sa.shaded, sb.shaded);
+fn bands_give_the_whole_frame_bit_for_bit() {
+    // The per-frame vertex data is shared by every band, and the integer scan conversion
+    // anchors each triangle's attributes at the triangle, not the band: 16-row bands (the
+    // boards'), 7-row bands and one 240-row band must give the same pixels.
+    for shading in [Shading::Gouraud, Shading::PerPixel] {
+        for n in [0, PERIOD / 3] {
+            let (whole, ws, _) = render_rows::<Fixed22>(shading, n, HEIGHT);
+            for rows in [16, 7] {
+                let (banded, bs, _) = render_rows::<Fixed22>(shading, n, rows);
+                assert!(banded == whole, "{shading:?} frame {n}, {rows}-row bands");
+                assert_eq!(bs.pixels, ws.pixels);
+            }
+        }
     }
 }
 
@@ -111,8 +115,8 @@ fn the_vertex_cache_changes_no_pixel() {
 fn every_position_fits_fixed_point() {
     // Demo::frame builds the lights through constructors that refuse positions beyond
     // Fixed22::COORDINATE_LIMIT: every frame of the period must build.
-    let mut buffers = MeshBuffers::<Fixed22>::new();
-    let demo = Demo::new(&mut buffers, Shading::PerPixel, None).unwrap();
+    let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
+    let demo = Demo::new(&mut buffers, Shading::PerPixel).unwrap();
     for n in 0..PERIOD {
         demo.frame(n).unwrap();
     }

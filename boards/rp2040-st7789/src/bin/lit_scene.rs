@@ -16,10 +16,10 @@ use defmt_rtt as _;
 // ... and the panic handler: prints the panic message through defmt, then halts the core.
 use panic_probe as _;
 
-use arealight::raster::{render_in_bands, Band, DrawStats, RasterError, Rgb565, Shading};
+use arealight::raster::{Band, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
-use demo_scene::{Demo, MeshBuffers, VertexCache, BACKGROUND, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
+use demo_scene::{Demo, MeshBuffers, Stage, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 use embedded_hal::digital::OutputPin;
 use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock;
@@ -44,20 +44,11 @@ pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 /// The Pico's crystal.
 const XTAL_FREQ_HZ: u32 = 12_000_000;
 
-/// Where the shader runs. Per pixel, each of the ~14 000 visible pixels would evaluate
-/// Lambert and Phong for the polygon and the sphere light in fixed point, up to 110 000
-/// instructions on the M0+ (about 10 s per frame); Gouraud evaluates them at the vertices only
-/// (with the vertex cache below, about 500 shader calls per frame) and interpolates the
-/// colours across the triangles (about 2 s per frame: see README.md).
+/// Where the shader runs. Per pixel, each of the ~13 000 visible pixels would evaluate
+/// Lambert and Phong for the polygon and the sphere light in fixed point (seconds per frame);
+/// Gouraud evaluates them once per frame at each visible vertex (about 400) and interpolates
+/// the colours across the triangles in integers.
 const SHADING: Shading = Shading::Gouraud;
-
-/// Why a frame failed: the rasterizer refused something or the display did not answer.
-#[derive(Debug)]
-#[allow(dead_code)] // the fields are read through `Debug` (the error log line)
-enum FrameError<E> {
-    Raster(RasterError),
-    Display(E),
-}
 
 // `hal::entry` is cortex-m-rt's `entry` plus a reset of the RP2040's hardware spinlocks (which
 // a debugger reset leaves as they were). It expands to an `unsafe` block, hence the `allow`.
@@ -138,14 +129,12 @@ fn run() -> ! {
     backlight.set_high().unwrap();
 
     // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
-    //    UV sphere and a torus, about 10 KiB) are generated once into a static buffer; the
-    //    camera, materials and draw options are set once. `singleton!` gives a `&'static mut`
-    //    to a static, once (a second call would return `None`). The vertex cache (24 KiB)
-    //    shades each vertex once per frame: without it, Gouraud shading would shade every
-    //    vertex again for each triangle and band that uses it (about 9 times).
+    //    UV sphere and a torus), their per-frame vertex data and the gamma table (about
+    //    85 KiB) live in a static buffer, filled once; the camera, materials and draw options
+    //    are set once. `singleton!` gives a `&'static mut` to a static, once (a second call
+    //    would return `None`).
     let buffers = singleton!(: MeshBuffers<Fixed22> = MeshBuffers::new()).unwrap();
-    let cache = singleton!(: VertexCache<Fixed22> = VertexCache::new()).unwrap();
-    let demo = Demo::<Fixed22>::new(buffers, SHADING, Some(cache)).unwrap();
+    let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
 
     // 10. One band: 240x16 RGB565 pixels and their 16-bit depths (7.5 KiB each). The whole
     //     frame is rendered through it, 15 times per frame.
@@ -153,49 +142,33 @@ fn run() -> ! {
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
 
-    // 11. The animation: frame n shows phase n / PERIOD; each frame is timed with the 1 MHz
-    //     timer, split into shading (the rasterizer and the light models) and sending (SPI).
+    // 11. The animation: frame n shows phase n / PERIOD. `render_frame` does the whole frame
+    //     (the lights, every vertex transformed and shaded once, then the bands, each sent
+    //     as soon as it is drawn: one address window, then the pixels, `Band::flush_to`) and
+    //     times its stages with the 1 MHz timer.
     let mut n: u32 = 0;
     loop {
-        let start = timer.get_counter();
-        // The lights and transforms of this frame (the lamp's position, the torus's turn).
-        let frame = demo.frame(n).unwrap();
-        let mut stats = DrawStats::default();
-        let (mut shade_us, mut send_us) = (0u64, 0u64);
-        let result = render_in_bands(
-            &mut band,
-            HEIGHT,
-            BACKGROUND,
-            // Draw: the band has been moved to its rows and cleared; draw the scene into it.
-            |band| {
-                let t0 = timer.get_counter();
-                let r = demo.draw_band(&frame, band, &mut stats);
-                shade_us += (timer.get_counter() - t0).to_micros();
-                r.map_err(FrameError::Raster)
-            },
-            // Flush: send the band's rows to the display (one address window, then the
-            // pixels: `Band::flush_to` is one `fill_contiguous` of the display).
-            |band| {
-                let t0 = timer.get_counter();
-                let r = band.flush_to(&mut display);
-                send_us += (timer.get_counter() - t0).to_micros();
-                r.map_err(FrameError::Display)
-            },
-        );
-        if let Err(e) = result {
-            defmt::error!("frame {}: {}", n, defmt::Debug2Format(&e));
+        let mut clock = || timer.get_counter_low();
+        let result = demo.render_frame(n, &mut band, &mut clock, |band| band.flush_to(&mut display));
+        match result {
+            Ok(report) => {
+                let us = |s: Stage| report.ticks[s as usize];
+                defmt::info!(
+                    "frame {=u32}: {=u32} us (setup {=u32}, transform {=u32}, shade {=u32}, raster {=u32}, flush {=u32}), {=u32} shader calls, {=u32} pixels, {=u32} triangle setups",
+                    n,
+                    report.total(),
+                    us(Stage::Setup),
+                    us(Stage::Transform),
+                    us(Stage::Shade),
+                    us(Stage::Raster),
+                    us(Stage::Flush),
+                    report.stats.shaded,
+                    report.stats.pixels,
+                    report.stats.rasterized
+                );
+            }
+            Err(e) => defmt::error!("frame {=u32}: {}", n, defmt::Debug2Format(&e)),
         }
-        let total_us = (timer.get_counter() - start).to_micros();
-        defmt::info!(
-            "frame {=u32}: {=u64} us ({=u64} us shading, {=u64} us SPI), {} shader calls, {} pixels, {} triangle setups",
-            n,
-            total_us,
-            shade_us,
-            send_us,
-            stats.shaded,
-            stats.pixels,
-            stats.rasterized
-        );
         if n % PERIOD == PERIOD - 1 {
             defmt::info!("one period ({=u32} frames) done", PERIOD);
         }

@@ -1,0 +1,746 @@
+//! Meshes prepared once per frame, then drawn band by band in integers.
+//!
+//! [`draw`](super::draw) does all of a triangle's work each time it meets a band: three vertex
+//! transforms and projections, the Gouraud shader calls, and per pixel a perspective division
+//! and the encoding's transfer function, all in `T` (soft-float or fixed point on a
+//! Cortex-M0+). A frame rendered in 15 bands repeats the vertex work for every band a
+//! triangle's object touches. [`PreparedMesh`] splits the work by how often it is needed:
+//!
+//! 1. **Once per frame, per vertex** ([`PreparedMesh::transform`]): the model transform, the
+//!    unit normal, the clip-space position, which clip planes it is outside of, its snapped
+//!    screen position (1/16 pixel, exactly [`draw`](super::draw)'s) and its depth value.
+//! 2. **Once per frame, per visible vertex** ([`PreparedMesh::shade`], Gouraud): the shader,
+//!    only at vertices of triangles that will be drawn (front-facing, non-degenerate, on
+//!    screen), each vertex once however many triangles and bands share it. The colour (times
+//!    the exposure) is kept as an integer with 24 fraction bits.
+//! 3. **Per band, per triangle that reaches it** ([`PreparedMesh::draw`]): the edge functions
+//!    ([`EdgeTriangle`]: the same exact coverage as [`draw`](super::draw)), then every
+//!    attribute as a plane `a(x, y) = a_b + (x - x_b) s_x + (y - y_b) s_y` in integers: one
+//!    setup per triangle (its gradients in `f32`, from exact `i64` numerators), then per
+//!    covered pixel one multiply-add per attribute, a depth compare, and (Gouraud) three loads
+//!    from an [`EncodeTable`]. No division and no `T` arithmetic per pixel in Gouraud mode.
+//!
+//! The attribute values at a pixel depend only on the triangle and the pixel (the plane is
+//! anchored at the triangle's own bounding box, not at the band), so a band gets exactly its
+//! rows of the full frame, as with [`draw`](super::draw).
+//!
+//! ## How it differs from `draw`
+//!
+//! - Gouraud colours are interpolated affinely in screen space (no perspective correction):
+//!   the usual choice for small triangles; the error is the colour difference across a
+//!   triangle times the relative depth change across it. Per-pixel positions and normals are
+//!   still perspective-correct.
+//! - Depth is `far (z - near) / (z (far - near))` (perspective; affine on screen, so it can be
+//!   stepped), linear `(z - near) / (far - near)` (orthographic), 16 bits, smaller is nearer:
+//!   do not mix [`draw`](super::draw) and [`PreparedMesh::draw`] in one depth band.
+//! - Colours go through an [`EncodeTable`] (within one level of [`encode_pixel`](super::encode_pixel)).
+//! - Interpolated colours are clamped to `[0, 127]` (times the exposure) at the vertices.
+//!
+//! Triangles that cross the near, far or guard-band planes are clipped exactly as in
+//! [`draw`](super::draw), and their pieces drawn by the same integer loop.
+//!
+//! ## Cost (measured: see the README's frame tables)
+//!
+//! Storage: one [`PreparedVertex`] per mesh vertex (caller-provided). Per frame: one vertex
+//! transform, normalization and projection per vertex (one division), one shader call per
+//! visible vertex. Per band and triangle: a row test; per triangle drawn: an edge setup, four
+//! attribute planes (Gouraud: depth and three channels; per pixel: depth and two barycentric
+//! weights); per covered pixel: Gouraud about 20 integer operations, per pixel the shader, one
+//! division and one normalization in `T`.
+
+use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
+use super::shade::{Shader, Shading};
+use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
+use super::{
+    clip_polygon, plane_distances, Affine, Camera, ClipVert, DrawOptions, DrawStats, Mesh,
+    RasterError, MAX_CLIPPED,
+};
+use crate::{Real, Rgb, Vec3};
+
+/// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
+const COLOUR_FRAC: u32 = 24;
+/// The largest interpolated colour, in those units (127.99: an `i32` with 24 fraction bits).
+const COLOUR_MAX: i32 = i32::MAX;
+/// Fraction bits of the depth value `q` in [0, 1] (a 16-bit depth is `q` with 16 bits).
+const DEPTH_FRAC: u32 = 28;
+/// Fraction bits of the barycentric weights of per-pixel shading.
+const BARY_FRAC: u32 = 24;
+
+/// Vertex flags.
+const NEEDED: u8 = 1;
+
+/// One vertex of a [`PreparedMesh`] for the current frame (see the module docs). Storage only:
+/// its fields are the rasterizer's.
+#[derive(Clone, Copy, Debug)]
+pub struct PreparedVertex<T> {
+    /// World position.
+    p: Vec3<T>,
+    /// Unit world normal (zero if it had no direction).
+    n: Vec3<T>,
+    /// Clip coordinates.
+    c: [T; 4],
+    /// `1 / w`.
+    iw: T,
+    /// Snapped screen position (valid when `outside == 0`).
+    fp: FixedPoint,
+    /// The depth value `q` with [`DEPTH_FRAC`] fraction bits (valid when `outside == 0`).
+    depth: i32,
+    /// The shaded colour times the exposure, [`COLOUR_FRAC`] fraction bits (Gouraud).
+    colour: [i32; 3],
+    /// Bit `k` set: outside clip plane `k` (near, far, guard band x+, x-, y+, y-); all set for
+    /// a non-finite position.
+    outside: u8,
+    flags: u8,
+}
+
+impl<T: Real> PreparedVertex<T> {
+    /// An unused vertex (to fill storage arrays).
+    pub const EMPTY: Self = PreparedVertex {
+        p: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        n: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        c: [T::ZERO; 4],
+        iw: T::ZERO,
+        fp: FixedPoint::new(0, 0),
+        depth: 0,
+        colour: [0; 3],
+        outside: u8::MAX,
+        flags: 0,
+    };
+}
+
+impl<T: Real> Default for PreparedVertex<T> {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+/// A [`Mesh`] with its vertices transformed, projected and (Gouraud) shaded for the current
+/// frame, drawn into any number of bands (see the module docs).
+///
+/// ```
+/// use arealight::raster::{
+///     mesh, Affine, Band, Camera, DrawOptions, EncodeTable, Encoding, Lit, Material, Mesh,
+///     PreparedMesh, PreparedVertex, Projection, Rgb565, Shading, Vertex,
+/// };
+/// use arealight::{Rgb, SphereLight, Vec3};
+///
+/// let (mut verts, mut tris) = ([Vertex::default(); 17 * 9], [[0u16; 3]; 2 * 16 * 7]);
+/// let counts = mesh::uv_sphere(1.0f32, 8, 16, &mut verts, &mut tris)?;
+/// let sphere = Mesh::new(&verts[..counts.vertices], &tris[..counts.triangles])?;
+/// let camera = Camera::new(
+///     Vec3::new(0.0, 0.0, 4.0), Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0),
+///     Projection::Perspective { fov_y: 0.7 }, 64, 64,
+/// )?;
+/// let lamp = SphereLight::new(Vec3::new(2.0, 2.0, 3.0), 0.5)?;
+/// let plastic = Material::new(Rgb::new(0.8, 0.3, 0.2), Rgb::splat(0.5), 16)?;
+/// let shader = Lit::new(&lamp, &plastic);
+/// let opts = DrawOptions::new(Shading::Gouraud);
+/// let table = EncodeTable::new::<f32>(Encoding::Srgb);
+///
+/// // Once per frame: transform and shade.
+/// let mut storage = [PreparedVertex::EMPTY; 17 * 9];
+/// let mut prepared = PreparedMesh::new(sphere, &mut storage)?;
+/// prepared.transform(&camera, &Affine::identity());
+/// prepared.shade(&camera, &shader, &opts);
+/// // Per band: draw.
+/// let (mut pixels, mut depth) = ([Rgb565(0); 64 * 16], [0u16; 64 * 16]);
+/// let mut band = Band::new(&mut pixels, Some(&mut depth), 64, 0)?;
+/// for y0 in (0..64).step_by(16) {
+///     band.move_to(y0);
+///     band.clear(Rgb565(0));
+///     prepared.draw(&camera, &mut band, &shader, &opts, &table)?;
+///     // send band.pixels() to the display's rows y0..y0 + 16 here
+/// }
+/// # Ok::<(), arealight::raster::RasterError>(())
+/// ```
+#[derive(Debug)]
+pub struct PreparedMesh<'m, 's, T> {
+    mesh: Mesh<'m, T>,
+    verts: &'s mut [PreparedVertex<T>],
+    /// Screen rows `[top, bottom)` the mesh can cover (all rows if a vertex is clipped).
+    rows: (i32, i32),
+}
+
+impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
+    /// `mesh` with `storage` for its per-frame vertex data (at least one entry per vertex).
+    /// Call [`PreparedMesh::transform`] before drawing.
+    ///
+    /// # Errors
+    /// [`RasterError::BufferTooSmall`] (`"prepared vertices"`).
+    pub fn new(
+        mesh: Mesh<'m, T>,
+        storage: &'s mut [PreparedVertex<T>],
+    ) -> Result<Self, RasterError> {
+        let needed = mesh.vertices().len();
+        let got = storage.len();
+        let verts = storage
+            .get_mut(..needed)
+            .ok_or(RasterError::BufferTooSmall {
+                what: "prepared vertices",
+                needed,
+                got,
+            })?;
+        for v in verts.iter_mut() {
+            *v = PreparedVertex::EMPTY;
+        }
+        Ok(PreparedMesh {
+            mesh,
+            verts,
+            rows: (0, 0),
+        })
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh<'m, T> {
+        &self.mesh
+    }
+
+    /// Screen rows `[top, bottom)` the mesh can cover this frame (all rows when a vertex is
+    /// clipped); a band outside them costs [`PreparedMesh::draw`] nothing.
+    pub fn rows(&self) -> (i32, i32) {
+        self.rows
+    }
+
+    /// Transforms every vertex through `transform` and `camera` for this frame: world
+    /// position, unit normal, clip position, snapped screen position and depth. Clears the
+    /// shaded colours. Cost per vertex: 2 x 9 multiply-adds, 1 normalization, 1 division,
+    /// the projection (~15 operations in `T`).
+    pub fn transform(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
+        let (near, far) = (camera.near, camera.far);
+        // q = a - b / z in perspective, (z - near) / (far - near) orthographic.
+        let range = far - near;
+        let a = far / range;
+        let b = far * near / range;
+        let inv_range = T::ONE / range;
+        let (mut top, mut bottom) = (i32::MAX, i32::MIN);
+        let mut clipped = false;
+        for (v, src) in self.verts.iter_mut().zip(self.mesh.vertices()) {
+            let p = transform.point(src.position);
+            if !p.is_finite() {
+                *v = PreparedVertex::EMPTY;
+                clipped = true;
+                continue;
+            }
+            let n = transform
+                .normal(src.normal)
+                .normalize()
+                .unwrap_or(Vec3::new(T::ZERO, T::ZERO, T::ZERO));
+            let c = camera.clip(p);
+            let d = plane_distances(&c, near, far);
+            let mut outside = 0u8;
+            for (k, dk) in d.iter().enumerate() {
+                if !(*dk >= T::ZERO) {
+                    outside |= 1 << k;
+                }
+            }
+            *v = PreparedVertex {
+                p,
+                n,
+                c,
+                iw: T::ZERO,
+                fp: FixedPoint::default(),
+                depth: 0,
+                colour: [0; 3],
+                outside,
+                flags: 0,
+            };
+            if outside != 0 {
+                clipped = true;
+                continue;
+            }
+            let (fp, depth, iw) = project(camera, &c, a, b, inv_range);
+            v.fp = fp;
+            v.depth = depth;
+            v.iw = iw;
+            top = top.min(fp.y);
+            bottom = bottom.max(fp.y);
+        }
+        self.rows = if clipped {
+            (0, camera.height as i32)
+        } else if top > bottom {
+            (0, 0)
+        } else {
+            // Pixel row r has its centre at 16 r + 8: rows whose centre lies in [top, bottom].
+            (
+                (top - SUBPIXEL / 2).div_euclid(SUBPIXEL),
+                (bottom - SUBPIXEL / 2).div_euclid(SUBPIXEL) + 2,
+            )
+        };
+    }
+
+    /// Gouraud: shades, once each, the vertices of the triangles that will be drawn
+    /// (front-facing unless `opts.cull` is [`Cull::None`](super::Cull::None), non-degenerate, overlapping the
+    /// viewport; all three of a clipped one), and keeps their colours times `opts.exposure`.
+    /// Per pixel ([`Shading::PerPixel`]): nothing (the shader runs in [`PreparedMesh::draw`]).
+    /// Returns the number of shader calls. Call after [`PreparedMesh::transform`].
+    ///
+    /// Cost: per triangle a few integer tests (2 multiplications); per visible vertex one
+    /// shader call and a normalization (the view direction).
+    pub fn shade<S: Shader<T> + ?Sized>(
+        &mut self,
+        camera: &Camera<T>,
+        shader: &S,
+        opts: &DrawOptions<T>,
+    ) -> u32 {
+        if opts.shading != Shading::Gouraud {
+            return 0;
+        }
+        let (w, h) = (
+            camera.width as i32 * SUBPIXEL,
+            camera.height as i32 * SUBPIXEL,
+        );
+        for tri in self.mesh.triangles() {
+            let idx = tri.map(|i| i as usize);
+            let (Some(a), Some(b), Some(c)) = (
+                self.verts.get(idx[0]),
+                self.verts.get(idx[1]),
+                self.verts.get(idx[2]),
+            ) else {
+                continue;
+            };
+            if a.outside & b.outside & c.outside != 0 {
+                continue;
+            }
+            if (a.outside | b.outside | c.outside) == 0 {
+                let fp = [a.fp, b.fp, c.fp];
+                let off_screen = fp.iter().all(|p| p.x < 0)
+                    || fp.iter().all(|p| p.x > w)
+                    || fp.iter().all(|p| p.y < 0)
+                    || fp.iter().all(|p| p.y > h);
+                if off_screen || EdgeTriangle::new(fp, opts.cull).is_none() {
+                    continue;
+                }
+            }
+            for i in idx {
+                if let Some(v) = self.verts.get_mut(i) {
+                    v.flags |= NEEDED;
+                }
+            }
+        }
+        let mut calls = 0u32;
+        for v in self.verts.iter_mut() {
+            if v.flags & NEEDED == 0 {
+                continue;
+            }
+            let view = camera.view_dir(v.p);
+            let n = if opts.two_sided && v.n.dot(view) < T::ZERO {
+                -v.n
+            } else {
+                v.n
+            };
+            let col = shader.shade(v.p, n, view).finite_or_zero();
+            v.colour = colour_bits(col, opts.exposure);
+            calls = calls.wrapping_add(1);
+        }
+        calls
+    }
+
+    /// Draws the mesh into `band` with this frame's vertices: Gouraud with the colours of
+    /// [`PreparedMesh::shade`], or per pixel with `shader` (`opts.shading`); colours encoded
+    /// through `table` (`opts.encoding` is not used: the table's encoding is). Depth-tested if
+    /// the band has a depth band (see the module docs for the depth value).
+    ///
+    /// Accuracy: the same pixels as [`draw`](super::draw) (the same snapped vertices and fill
+    /// rule); colours as described in the module docs. Cost: see the module docs.
+    ///
+    /// # Errors
+    /// [`RasterError::BadSize`] (`"band width"`) when the band is not as wide as the camera's
+    /// viewport.
+    pub fn draw<P, S>(
+        &self,
+        camera: &Camera<T>,
+        band: &mut Band<'_, P>,
+        shader: &S,
+        opts: &DrawOptions<T>,
+        table: &EncodeTable,
+    ) -> Result<DrawStats, RasterError>
+    where
+        P: PixelFormat,
+        S: Shader<T> + ?Sized,
+    {
+        if band.width() != camera.width {
+            return Err(RasterError::BadSize("band width"));
+        }
+        let mut stats = DrawStats {
+            triangles: self.mesh.triangles().len() as u32,
+            ..DrawStats::default()
+        };
+        let row0 = band.y0() as i32;
+        let row1 = (band.y0() as i32 + band.rows() as i32).min(camera.height as i32);
+        if row0 >= row1 || self.rows.1 <= row0 || self.rows.0 >= row1 {
+            return Ok(stats);
+        }
+        // Sub-pixel rows of the band's first and last pixel centres.
+        let (sy0, sy1) = (row0 * SUBPIXEL, row1 * SUBPIXEL);
+        let ctx = Context {
+            camera,
+            shader,
+            opts,
+            table,
+            row0,
+            row1,
+        };
+        for tri in self.mesh.triangles() {
+            let idx = tri.map(|i| i as usize);
+            let (Some(a), Some(b), Some(c)) = (
+                self.verts.get(idx[0]),
+                self.verts.get(idx[1]),
+                self.verts.get(idx[2]),
+            ) else {
+                continue;
+            };
+            if a.outside & b.outside & c.outside != 0 {
+                continue;
+            }
+            if (a.outside | b.outside | c.outside) == 0 {
+                let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
+                let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
+                if hi < sy0 || lo > sy1 {
+                    continue;
+                }
+                let fv = [a, b, c].map(ScreenVertex::from_prepared);
+                raster(&ctx, band, &fv, &mut stats);
+            } else {
+                self.draw_clipped(&ctx, band, [a, b, c], &mut stats);
+            }
+        }
+        Ok(stats)
+    }
+
+    /// A triangle that crosses a clip plane: clipped as [`draw`](super::draw) clips, its fan
+    /// drawn by the same integer loop.
+    fn draw_clipped<P, S>(
+        &self,
+        ctx: &Context<'_, T, S>,
+        band: &mut Band<'_, P>,
+        v: [&PreparedVertex<T>; 3],
+        stats: &mut DrawStats,
+    ) where
+        P: PixelFormat,
+        S: Shader<T> + ?Sized,
+    {
+        let camera = ctx.camera;
+        let cv = v.map(|v| ClipVert {
+            c: v.c,
+            p: v.p,
+            n: v.n,
+            col: Rgb::new(
+                T::from_fixed_i32(v.colour[0], COLOUR_FRAC),
+                T::from_fixed_i32(v.colour[1], COLOUR_FRAC),
+                T::from_fixed_i32(v.colour[2], COLOUR_FRAC),
+            ),
+        });
+        let mut poly = [cv[0]; MAX_CLIPPED];
+        let count = clip_polygon(cv, camera.near, camera.far, &mut poly);
+        let range = camera.far - camera.near;
+        let (a, b, inv_range) = (camera.far / range, camera.far * camera.near / range, T::ONE / range);
+        let mut sv = [ScreenVertex::<T>::EMPTY; MAX_CLIPPED];
+        for (s, cv) in sv.iter_mut().zip(&poly[..count]) {
+            if !(cv.c[3] > T::ZERO) {
+                return;
+            }
+            let (fp, depth, iw) = project(camera, &cv.c, a, b, inv_range);
+            *s = ScreenVertex {
+                fp,
+                depth,
+                colour: colour_bits(cv.col, T::ONE),
+                p: cv.p,
+                n: cv.n,
+                iw,
+            };
+        }
+        for i in 1..count.saturating_sub(1) {
+            raster(ctx, band, &[&sv[0], &sv[i], &sv[i + 1]].map(|s| *s), stats);
+        }
+    }
+}
+
+/// The snapped screen position, depth value and `1/w` of clip coordinates `c` inside the
+/// guard band (`w > 0`); `q = a - b / w` (perspective) or `(z - near) inv_range`.
+#[inline]
+fn project<T: Real>(
+    camera: &Camera<T>,
+    c: &[T; 4],
+    a: T,
+    b: T,
+    inv_range: T,
+) -> (FixedPoint, i32, T) {
+    let iw = T::ONE / c[3];
+    let hw = T::from_u32(camera.width as u32) * T::HALF;
+    let hh = T::from_u32(camera.height as u32) * T::HALF;
+    let (x, y) = ((c[0] * iw + T::ONE) * hw, (T::ONE - c[1] * iw) * hh);
+    let q = if camera.perspective {
+        a - b * iw
+    } else {
+        (c[2] - camera.near) * inv_range
+    };
+    (
+        FixedPoint::new(
+            x.to_fixed_i32(super::edge::SUBPIXEL_BITS),
+            y.to_fixed_i32(super::edge::SUBPIXEL_BITS),
+        ),
+        q.clamp01().to_fixed_i32(DEPTH_FRAC),
+        iw,
+    )
+}
+
+/// A linear colour times `exposure` as integers with [`COLOUR_FRAC`] fraction bits, clamped
+/// to `[0, COLOUR_MAX]`.
+#[inline]
+fn colour_bits<T: Real>(c: Rgb<T>, exposure: T) -> [i32; 3] {
+    [c.r, c.g, c.b].map(|x| (x * exposure).to_fixed_i32(COLOUR_FRAC).clamp(0, COLOUR_MAX))
+}
+
+/// What a triangle's scan conversion needs of a vertex.
+#[derive(Clone, Copy, Debug)]
+struct ScreenVertex<T> {
+    fp: FixedPoint,
+    depth: i32,
+    colour: [i32; 3],
+    p: Vec3<T>,
+    n: Vec3<T>,
+    iw: T,
+}
+
+impl<T: Real> ScreenVertex<T> {
+    const EMPTY: Self = ScreenVertex {
+        fp: FixedPoint::new(0, 0),
+        depth: 0,
+        colour: [0; 3],
+        p: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        n: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        iw: T::ZERO,
+    };
+
+    #[inline]
+    fn from_prepared(v: &PreparedVertex<T>) -> Self {
+        ScreenVertex {
+            fp: v.fp,
+            depth: v.depth,
+            colour: v.colour,
+            p: v.p,
+            n: v.n,
+            iw: v.iw,
+        }
+    }
+}
+
+/// The draw call's fixed inputs.
+struct Context<'a, T, S: ?Sized> {
+    camera: &'a Camera<T>,
+    shader: &'a S,
+    opts: &'a DrawOptions<T>,
+    table: &'a EncodeTable,
+    row0: i32,
+    row1: i32,
+}
+
+/// An attribute plane over pixels: `value(x, y) = base + x sx + (y - yb) sy` in wrapping
+/// `i32` arithmetic (exact wherever the value itself fits, which it does inside the
+/// triangle).
+#[derive(Clone, Copy, Debug, Default)]
+struct Plane {
+    base: i32,
+    sx: i32,
+    sy: i32,
+}
+
+impl Plane {
+    /// The plane through the values `a` at the three vertices (edge-triangle order), with
+    /// `geo` the triangle's setup.
+    #[inline]
+    fn new(a: [i32; 3], geo: &Geometry) -> Self {
+        let (da1, da2) = (
+            a[1] as i64 - a[0] as i64,
+            a[2] as i64 - a[0] as i64,
+        );
+        // Exact numerators (|da| < 2^32, |e|, |f| < 2^26: products below 2^58).
+        let nx = da1 * geo.f2 - da2 * geo.f1;
+        let ny = da2 * geo.e1 - da1 * geo.e2;
+        // Per pixel: 16 sub-pixel units.
+        let sx = nx as f32 * geo.inv16;
+        let sy = ny as f32 * geo.inv16;
+        // The value at the centre of pixel (xb, yb), then moved to column 0.
+        let at_b = a[0] as f32 + (sx * geo.dxb + sy * geo.dyb);
+        let sxi = sx as i32;
+        Plane {
+            base: (at_b as i32).wrapping_sub(sxi.wrapping_mul(geo.xb)),
+            sx: sxi,
+            sy: sy as i32,
+        }
+    }
+    /// The value at column 0 of the row `dy` rows below the anchor row.
+    #[inline(always)]
+    fn row(&self, dy: i32) -> i32 {
+        self.base.wrapping_add(dy.wrapping_mul(self.sy))
+    }
+}
+
+/// A triangle's setup for its attribute planes.
+struct Geometry {
+    f1: i64,
+    f2: i64,
+    /// Sub-pixel x offsets of vertices 1 and 2 from vertex 0 (`f1`, `f2`: y offsets).
+    e1: i64,
+    e2: i64,
+    /// `16 / D`, D twice the area in sub-pixel units.
+    inv16: f32,
+    /// The anchor pixel (the triangle's top-left bounding-box pixel) and the offset of its
+    /// centre from vertex 0, in pixels.
+    xb: i32,
+    dxb: f32,
+    dyb: f32,
+}
+
+/// Scan-converts one triangle into the band (see the module docs).
+fn raster<T, P, S>(
+    ctx: &Context<'_, T, S>,
+    band: &mut Band<'_, P>,
+    v: &[ScreenVertex<T>; 3],
+    stats: &mut DrawStats,
+) where
+    T: Real,
+    P: PixelFormat,
+    S: Shader<T> + ?Sized,
+{
+    let opts = ctx.opts;
+    let Some(tri) = EdgeTriangle::new([v[0].fp, v[1].fp, v[2].fp], opts.cull) else {
+        return;
+    };
+    let v = if tri.swapped() {
+        [&v[0], &v[2], &v[1]]
+    } else {
+        [&v[0], &v[1], &v[2]]
+    };
+    stats.rasterized = stats.rasterized.wrapping_add(1);
+    let fp = tri.vertices();
+    // The anchor: the first pixel centre at or right of / below the leftmost / topmost vertex
+    // (pixel i has its centre at 16 i + 8), independent of the band.
+    let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
+    let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
+    let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+    let geo = Geometry {
+        f1: fp[1].y as i64 - fp[0].y as i64,
+        f2: fp[2].y as i64 - fp[0].y as i64,
+        e1: fp[1].x as i64 - fp[0].x as i64,
+        e2: fp[2].x as i64 - fp[0].x as i64,
+        inv16: SUBPIXEL as f32 / tri.area2() as f32,
+        xb,
+        dxb: (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as f32 / SUBPIXEL as f32,
+        dyb: (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as f32 / SUBPIXEL as f32,
+    };
+    let depth = Plane::new([v[0].depth, v[1].depth, v[2].depth], &geo);
+    let width = ctx.camera.width as i32;
+    let (row0, row1) = (ctx.row0, ctx.row1);
+    match opts.shading {
+        Shading::Gouraud => {
+            let planes: [Plane; 3] =
+                core::array::from_fn(|k| Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo));
+            let table = ctx.table;
+            let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
+            tri.for_each_span(width, row0, row1, |y, xs, xe| {
+                let Some((px, dp)) = band.row_mut(y as u16) else {
+                    return;
+                };
+                let dy = y - yb;
+                let (d0, r0, g0, b0) = (
+                    depth.row(dy),
+                    planes[0].row(dy),
+                    planes[1].row(dy),
+                    planes[2].row(dy),
+                );
+                let (xs, xe) = (xs as usize, xe as usize);
+                let Some(px) = px.get_mut(xs..=xe) else {
+                    return;
+                };
+                let mut x = xs as i32;
+                match dp.and_then(|d| d.get_mut(xs..=xe)) {
+                    Some(dp) => {
+                        for (p, d) in px.iter_mut().zip(dp.iter_mut()) {
+                            let z = depth16(d0.wrapping_add(x.wrapping_mul(depth.sx)));
+                            if z < *d {
+                                *d = z;
+                                *p = table.pixel(
+                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
+                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
+                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                                );
+                                stats.pixels = stats.pixels.wrapping_add(1);
+                            }
+                            x += 1;
+                        }
+                    }
+                    None => {
+                        for p in px.iter_mut() {
+                            *p = table.pixel(
+                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
+                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
+                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                            );
+                            stats.pixels = stats.pixels.wrapping_add(1);
+                            x += 1;
+                        }
+                    }
+                }
+            });
+        }
+        Shading::PerPixel => {
+            let one = 1i32 << BARY_FRAC;
+            let l1 = Plane::new([0, one, 0], &geo);
+            let l2 = Plane::new([0, 0, one], &geo);
+            let iw = [v[0].iw, v[1].iw, v[2].iw];
+            let pw: [Vec3<T>; 3] = core::array::from_fn(|k| v[k].p * iw[k]);
+            let nw: [Vec3<T>; 3] = core::array::from_fn(|k| v[k].n * iw[k]);
+            let camera = ctx.camera;
+            tri.for_each_span(width, row0, row1, |y, xs, xe| {
+                let dy = y - yb;
+                let (d0, a0, b0) = (depth.row(dy), l1.row(dy), l2.row(dy));
+                for x in xs..=xe {
+                    let z = depth16(d0.wrapping_add(x.wrapping_mul(depth.sx)));
+                    let Some((px, dp)) = band.row_mut(y as u16) else {
+                        return;
+                    };
+                    if let Some(d) = dp.and_then(|d| d.get_mut(x as usize)) {
+                        if z >= *d {
+                            continue;
+                        }
+                        *d = z;
+                    }
+                    let w1 = a0.wrapping_add(x.wrapping_mul(l1.sx)).clamp(0, one);
+                    let w2 = b0.wrapping_add(x.wrapping_mul(l2.sx)).clamp(0, one);
+                    let (w1, w2) = (
+                        T::from_fixed_i32(w1, BARY_FRAC),
+                        T::from_fixed_i32(w2, BARY_FRAC),
+                    );
+                    let w0 = (T::ONE - w1 - w2).max(T::ZERO);
+                    let s = w0 * iw[0] + w1 * iw[1] + w2 * iw[2];
+                    let inv = if s > T::ZERO { T::ONE / s } else { T::ZERO };
+                    let p = (pw[0] * w0 + pw[1] * w1 + pw[2] * w2) * inv;
+                    let view = camera.view_dir(p);
+                    let n = (nw[0] * w0 + nw[1] * w1 + nw[2] * w2)
+                        .normalize()
+                        .unwrap_or(view);
+                    let n = if opts.two_sided && n.dot(view) < T::ZERO {
+                        -n
+                    } else {
+                        n
+                    };
+                    stats.shaded = stats.shaded.wrapping_add(1);
+                    let col = ctx.shader.shade(p, n, view).finite_or_zero();
+                    let c = colour_bits(col, opts.exposure);
+                    let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
+                    if let Some(p) = px.get_mut(x as usize) {
+                        *p = ctx.table.pixel(c[0] >> shift, c[1] >> shift, c[2] >> shift);
+                        stats.pixels = stats.pixels.wrapping_add(1);
+                    }
+                }
+            });
+        }
+    }
+}
+
+/// A depth value with [`DEPTH_FRAC`] fraction bits as the band's 16 bits (clamped).
+#[inline(always)]
+fn depth16(q: i32) -> u16 {
+    (q >> (DEPTH_FRAC - 16)).clamp(0, u16::MAX as i32) as u16
+}
