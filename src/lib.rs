@@ -77,6 +77,7 @@ pub mod sh9;
 pub mod shaping;
 pub mod sine_power;
 pub mod vec3;
+mod wide;
 
 #[cfg(feature = "cap")]
 pub use cap::{CapLight, SphereLight};

@@ -12,6 +12,8 @@
 //! Coordinates are limited to `|x|, |y| <= MAX_COORD` sub-pixel units (the pipeline clips to a
 //! guard band inside it), so every product below fits an `i64` with room to spare.
 
+use crate::wide::mul_32;
+
 /// Sub-pixel bits of the snapped vertex coordinates.
 pub const SUBPIXEL_BITS: u32 = 4;
 /// Sub-pixel steps per pixel (`1 << SUBPIXEL_BITS`).
@@ -35,11 +37,11 @@ impl FixedPoint {
     pub const fn new(x: i32, y: i32) -> Self {
         FixedPoint { x, y }
     }
-    /// The centre of pixel `(px, py)`.
+    /// The centre of pixel `(px, py)` (saturating for pixels beyond `i32::MAX / 16`).
     pub const fn pixel_centre(px: i32, py: i32) -> Self {
         FixedPoint {
-            x: px * SUBPIXEL + SUBPIXEL / 2,
-            y: py * SUBPIXEL + SUBPIXEL / 2,
+            x: px.saturating_mul(SUBPIXEL).saturating_add(SUBPIXEL / 2),
+            y: py.saturating_mul(SUBPIXEL).saturating_add(SUBPIXEL / 2),
         }
     }
 }
@@ -54,11 +56,26 @@ pub const fn is_top_left(a: FixedPoint, b: FixedPoint) -> bool {
 }
 
 /// The edge function of `a -> b` at `p`: `(b.x - a.x)(p.y - a.y) - (b.y - a.y)(p.x - a.x)`,
-/// exact. Positive on the right of the edge seen on screen (`y` down).
+/// exact for coordinates within [`MAX_COORD`] (saturated beyond: never a panic or a wrong
+/// sign). Positive on the right of the edge seen on screen (`y` down). Cost: two 32 x 32 ->
+/// 64-bit products.
 #[inline]
-pub const fn edge_function(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> i64 {
-    (b.x as i64 - a.x as i64) * (p.y as i64 - a.y as i64)
-        - (b.y as i64 - a.y as i64) * (p.x as i64 - a.x as i64)
+pub fn edge_function(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> i64 {
+    // Differences of coordinates within MAX_COORD fit an i32: 32 x 32 -> 64-bit products
+    // (inline on Cortex-M0, where an i64 product is a library call).
+    let d = |u: i32, v: i32| u.wrapping_sub(v);
+    if [a, b, p]
+        .iter()
+        .all(|q| q.x.unsigned_abs() <= MAX_COORD as u32 && q.y.unsigned_abs() <= MAX_COORD as u32)
+    {
+        mul_32(d(b.x, a.x), d(p.y, a.y)) - mul_32(d(b.y, a.y), d(p.x, a.x))
+    } else {
+        // Beyond the rasterizer's range (EdgeTriangle refuses it): exact in i128, saturated
+        // to i64 (the sign, which is what a coverage test reads, is kept).
+        let w = |u: i32, v: i32| u as i128 - v as i128;
+        let e = w(b.x, a.x) * w(p.y, a.y) - w(b.y, a.y) * w(p.x, a.x);
+        e.clamp(i64::MIN as i128, i64::MAX as i128) as i64
+    }
 }
 
 /// Which faces to skip.
@@ -187,37 +204,70 @@ impl EdgeTriangle {
     /// (columns `[0, width)`), with the first and last covered column: the pixels
     /// [`EdgeTriangle::for_each_covered`] visits, row by row, as spans (a triangle is convex,
     /// so a row's covered pixels are contiguous). The same exact integer tests; each row stops
-    /// at the first uncovered pixel after its span. Cost per row: 6 multiplications; per pixel
+    /// at the first uncovered pixel after its span. Cost: 6 multiplications; per row 3 additions; per pixel
     /// from the box's left edge to the span's end: 3 additions and 3 comparisons.
-    pub fn for_each_span<F: FnMut(i32, i32, i32)>(&self, width: i32, row0: i32, row1: i32, mut f: F) {
+    pub fn for_each_span<F: FnMut(i32, i32, i32)>(&self, width: i32, row0: i32, row1: i32, f: F) {
         let Some((x0, y0, x1, y1)) = self.pixel_bounds(width, row0, row1) else {
             return;
         };
         let v = self.v;
-        let step: [i64; 3] = core::array::from_fn(|k| {
+        // A triangle within 1024 pixels each way (any on a display) has every edge function
+        // over its bounding box below 2^29 in magnitude: step in i32 (one register each on a
+        // 32-bit core) rather than i64.
+        let lo = |a: i32, b: i32, c: i32| a.min(b).min(c);
+        let hi = |a: i32, b: i32, c: i32| a.max(b).max(c);
+        let small = hi(v[0].x, v[1].x, v[2].x) - lo(v[0].x, v[1].x, v[2].x) < 1024 * SUBPIXEL
+            && hi(v[0].y, v[1].y, v[2].y) - lo(v[0].y, v[1].y, v[2].y) < 1024 * SUBPIXEL;
+        if small {
+            self.scan::<i32, F>((x0, y0, x1, y1), f);
+        } else {
+            self.scan::<i64, F>((x0, y0, x1, y1), f);
+        }
+    }
+
+    /// The span loop of [`EdgeTriangle::for_each_span`] over the pixel box `(x0, y0, x1, y1)`
+    /// in integers `E` (which must hold every edge value over the box).
+    #[inline(always)]
+    fn scan<E: EdgeInt, F: FnMut(i32, i32, i32)>(&self, (x0, y0, x1, y1): (i32, i32, i32, i32), mut f: F) {
+        let v = self.v;
+        // Per edge k: d/dx (one pixel = SUBPIXEL units) -(b.y - a.y) SUBPIXEL, d/dy
+        // (b.x - a.x) SUBPIXEL; rows are stepped exactly (integer additions) from the first.
+        let step: [E; 3] = core::array::from_fn(|k| {
             let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-            -(b.y as i64 - a.y as i64) * SUBPIXEL as i64
+            E::from_i64(-(b.y as i64 - a.y as i64) * SUBPIXEL as i64)
         });
-        let bias = self.bias;
+        let row_step: [E; 3] = core::array::from_fn(|k| {
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            E::from_i64((b.x as i64 - a.x as i64) * SUBPIXEL as i64)
+        });
+        // The fill rule `e + bias >= 0` as `e >= -bias` (0 or 1).
+        let need: [E; 3] = core::array::from_fn(|k| E::from_i64(-self.bias[k]));
+        let inside = |e: &[E; 3]| e[0] >= need[0] && e[1] >= need[1] && e[2] >= need[2];
+        let start = self.weights_at(FixedPoint::pixel_centre(x0, y0));
+        let mut row_e: [E; 3] = start.map(E::from_i64);
         for y in y0..=y1 {
-            let mut e = self.weights_at(FixedPoint::pixel_centre(x0, y));
-            let mut first = None;
+            let mut e = row_e;
+            for k in 0..3 {
+                row_e[k] = row_e[k] + row_step[k];
+            }
             let mut x = x0;
-            while x <= x1 {
-                let inside = e[0] + bias[0] >= 0 && e[1] + bias[1] >= 0 && e[2] + bias[2] >= 0;
-                match (inside, first) {
-                    (true, None) => first = Some(x),
-                    (false, Some(_)) => break,
-                    _ => {}
+            while x <= x1 && !inside(&e) {
+                for k in 0..3 {
+                    e[k] = e[k] + step[k];
                 }
-                e[0] += step[0];
-                e[1] += step[1];
-                e[2] += step[2];
                 x += 1;
             }
-            if let Some(first) = first {
-                f(y, first, x - 1);
+            if x > x1 {
+                continue;
             }
+            let first = x;
+            while x <= x1 && inside(&e) {
+                for k in 0..3 {
+                    e[k] = e[k] + step[k];
+                }
+                x += 1;
+            }
+            f(y, first, x - 1);
         }
     }
 
@@ -257,5 +307,26 @@ impl EdgeTriangle {
                 e[2] += step[2];
             }
         }
+    }
+}
+
+/// The integers edge functions are stepped in: `i32` for triangles of display size, `i64`
+/// beyond.
+trait EdgeInt: Copy + PartialOrd + core::ops::Add<Output = Self> {
+    /// From an `i64` known to fit.
+    fn from_i64(x: i64) -> Self;
+}
+
+impl EdgeInt for i32 {
+    #[inline(always)]
+    fn from_i64(x: i64) -> Self {
+        x as i32
+    }
+}
+
+impl EdgeInt for i64 {
+    #[inline(always)]
+    fn from_i64(x: i64) -> Self {
+        x
     }
 }

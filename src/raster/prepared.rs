@@ -55,6 +55,7 @@ use super::{
     clip_polygon, plane_distances, Affine, Camera, ClipVert, DrawOptions, DrawStats, Mesh,
     RasterError, MAX_CLIPPED,
 };
+use crate::wide::{mul_32, mul_64};
 use crate::{Real, Rgb, Vec3};
 
 /// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
@@ -77,8 +78,6 @@ pub struct PreparedVertex<T> {
     p: Vec3<T>,
     /// Unit world normal (zero if it had no direction).
     n: Vec3<T>,
-    /// Clip coordinates.
-    c: [T; 4],
     /// `1 / w`.
     iw: T,
     /// Snapped screen position (valid when `outside == 0`).
@@ -94,16 +93,16 @@ pub struct PreparedVertex<T> {
 }
 
 impl<T: Real> PreparedVertex<T> {
-    /// An unused vertex (to fill storage arrays).
+    /// An unused vertex (to fill storage arrays; all zero bits, so that a `static` of them
+    /// costs no flash).
     pub const EMPTY: Self = PreparedVertex {
         p: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
         n: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
-        c: [T::ZERO; 4],
         iw: T::ZERO,
         fp: FixedPoint::new(0, 0),
         depth: 0,
         colour: [0; 3],
-        outside: u8::MAX,
+        outside: 0,
         flags: 0,
     };
 }
@@ -112,6 +111,17 @@ impl<T: Real> Default for PreparedVertex<T> {
     fn default() -> Self {
         Self::EMPTY
     }
+}
+
+/// A shaded vertex colour as [`PreparedMesh`] keeps it (linear, times the exposure, in fixed
+/// point): opaque, to be handed from one core's prepared mesh to another's
+/// ([`PreparedMesh::colours`], [`PreparedMesh::set_colours`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VertexColour([i32; 3]);
+
+impl VertexColour {
+    /// Black (to fill exchange buffers).
+    pub const BLACK: Self = VertexColour([0; 3]);
 }
 
 /// A [`Mesh`] with its vertices transformed, projected and (Gouraud) shaded for the current
@@ -217,7 +227,10 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         for (v, src) in self.verts.iter_mut().zip(self.mesh.vertices()) {
             let p = transform.point(src.position);
             if !p.is_finite() {
-                *v = PreparedVertex::EMPTY;
+                *v = PreparedVertex {
+                    outside: u8::MAX,
+                    ..PreparedVertex::EMPTY
+                };
                 clipped = true;
                 continue;
             }
@@ -236,7 +249,6 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             *v = PreparedVertex {
                 p,
                 n,
-                c,
                 iw: T::ZERO,
                 fp: FixedPoint::default(),
                 depth: 0,
@@ -282,8 +294,30 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         shader: &S,
         opts: &DrawOptions<T>,
     ) -> u32 {
+        self.shade_some(camera, shader, opts, |_| true)
+    }
+
+    /// [`PreparedMesh::shade`] of only the vertices whose index `mine` accepts: the visible
+    /// vertices are found as by `shade`, but only these are shaded. For two cores that share
+    /// a frame: each shades its share (e.g. even and odd indices), then each takes the
+    /// other's colours ([`PreparedMesh::colours`], [`PreparedMesh::set_colours`]), so that
+    /// every visible vertex is shaded once per frame whichever core draws it.
+    pub fn shade_some<S, W>(
+        &mut self,
+        camera: &Camera<T>,
+        shader: &S,
+        opts: &DrawOptions<T>,
+        mine: W,
+    ) -> u32
+    where
+        S: Shader<T> + ?Sized,
+        W: Fn(usize) -> bool,
+    {
         if opts.shading != Shading::Gouraud {
             return 0;
+        }
+        for v in self.verts.iter_mut() {
+            v.flags &= !NEEDED;
         }
         let (w, h) = (
             camera.width as i32 * SUBPIXEL,
@@ -307,7 +341,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                     || fp.iter().all(|p| p.x > w)
                     || fp.iter().all(|p| p.y < 0)
                     || fp.iter().all(|p| p.y > h);
-                if off_screen || EdgeTriangle::new(fp, opts.cull).is_none() {
+                if off_screen || !faces(&fp, opts.cull) {
                     continue;
                 }
             }
@@ -318,8 +352,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             }
         }
         let mut calls = 0u32;
-        for v in self.verts.iter_mut() {
-            if v.flags & NEEDED == 0 {
+        for (i, v) in self.verts.iter_mut().enumerate() {
+            if v.flags & NEEDED == 0 || !mine(i) {
                 continue;
             }
             let view = camera.view_dir(v.p);
@@ -333,6 +367,27 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             calls = calls.wrapping_add(1);
         }
         calls
+    }
+
+    /// The shaded colours of the vertices, in vertex order (meaningful for the vertices
+    /// shaded this frame): what a core hands the other after [`PreparedMesh::shade_some`].
+    pub fn colours(&self) -> impl Iterator<Item = VertexColour> + '_ {
+        self.verts.iter().map(|v| VertexColour(v.colour))
+    }
+
+    /// Takes the colours of the vertices whose index `theirs` accepts from `colours` (in
+    /// vertex order, as [`PreparedMesh::colours`] gives them; missing entries are left as
+    /// they are).
+    pub fn set_colours(
+        &mut self,
+        colours: impl IntoIterator<Item = VertexColour>,
+        theirs: impl Fn(usize) -> bool,
+    ) {
+        for (i, (v, c)) in self.verts.iter_mut().zip(colours).enumerate() {
+            if theirs(i) {
+                v.colour = c.0;
+            }
+        }
     }
 
     /// Draws the mesh into `band` with this frame's vertices: Gouraud with the colours of
@@ -395,7 +450,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             if (a.outside | b.outside | c.outside) == 0 {
                 let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
                 let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
-                if hi < sy0 || lo > sy1 {
+                if hi < sy0 || lo > sy1 || !faces(&[a.fp, b.fp, c.fp], opts.cull) {
                     continue;
                 }
                 let fv = [a, b, c].map(ScreenVertex::from_prepared);
@@ -421,7 +476,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     {
         let camera = ctx.camera;
         let cv = v.map(|v| ClipVert {
-            c: v.c,
+            // The clip coordinates again (rare: only clipped triangles need them).
+            c: camera.clip(v.p),
             p: v.p,
             n: v.n,
             col: Rgb::new(
@@ -453,6 +509,16 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             raster(ctx, band, &[&sv[0], &sv[i], &sv[i + 1]].map(|s| *s), stats);
         }
     }
+}
+
+/// The culling test of [`EdgeTriangle::new`] alone (two products): `false` for a triangle of
+/// zero area or (with [`Cull::Back`](super::Cull::Back)) a back face, which it would refuse.
+/// Vertices of an unclipped triangle are within the guard band, far inside `i32` products.
+#[inline]
+fn faces(v: &[FixedPoint; 3], cull: super::Cull) -> bool {
+    let area = mul_32(v[1].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y))
+        - mul_32(v[1].y.wrapping_sub(v[0].y), v[2].x.wrapping_sub(v[0].x));
+    area < 0 || (area > 0 && cull == super::Cull::None)
 }
 
 /// The snapped screen position, depth value and `1/w` of clip coordinates `c` inside the
@@ -546,27 +612,24 @@ struct Plane {
 }
 
 impl Plane {
-    /// The plane through the values `a` at the three vertices (edge-triangle order), with
-    /// `geo` the triangle's setup.
+    /// The plane through the values `a` at the three vertices (edge-triangle order):
+    /// `a0 + (a1 - a0) l1 + (a2 - a0) l2` with the triangle's barycentric planes. Cost: 6
+    /// 64-bit products.
     #[inline]
     fn new(a: [i32; 3], geo: &Geometry) -> Self {
         let (da1, da2) = (
             a[1] as i64 - a[0] as i64,
             a[2] as i64 - a[0] as i64,
         );
-        // Exact numerators (|da| < 2^32, |e|, |f| < 2^26: products below 2^58).
-        let nx = da1 * geo.f2 - da2 * geo.f1;
-        let ny = da2 * geo.e1 - da1 * geo.e2;
-        // Per pixel: 16 sub-pixel units.
-        let sx = nx as f32 * geo.inv16;
-        let sy = ny as f32 * geo.inv16;
-        // The value at the centre of pixel (xb, yb), then moved to column 0.
-        let at_b = a[0] as f32 + (sx * geo.dxb + sy * geo.dyb);
-        let sxi = sx as i32;
+        let mix = |l1: i64, l2: i64| {
+            (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32
+        };
+        let sx = mix(geo.l1.0, geo.l2.0);
+        let at_b = a[0].wrapping_add(mix(geo.l1.2, geo.l2.2));
         Plane {
-            base: (at_b as i32).wrapping_sub(sxi.wrapping_mul(geo.xb)),
-            sx: sxi,
-            sy: sy as i32,
+            base: at_b.wrapping_sub(sx.wrapping_mul(geo.xb)),
+            sx,
+            sy: mix(geo.l1.1, geo.l2.1),
         }
     }
     /// The value at column 0 of the row `dy` rows below the anchor row.
@@ -576,20 +639,64 @@ impl Plane {
     }
 }
 
-/// A triangle's setup for its attribute planes.
+/// A triangle's barycentric planes: the weights `l1`, `l2` of vertices 1 and 2 (vertex 0 has
+/// `1 - l1 - l2`) with [`BARY_FRAC`] fraction bits, as `(per pixel in x, per pixel in y, at
+/// the anchor)`, the anchor being the centre of the triangle's top-left bounding-box pixel
+/// (`xb`, `yb`).
 struct Geometry {
-    f1: i64,
-    f2: i64,
-    /// Sub-pixel x offsets of vertices 1 and 2 from vertex 0 (`f1`, `f2`: y offsets).
-    e1: i64,
-    e2: i64,
-    /// `16 / D`, D twice the area in sub-pixel units.
-    inv16: f32,
-    /// The anchor pixel (the triangle's top-left bounding-box pixel) and the offset of its
-    /// centre from vertex 0, in pixels.
+    l1: (i64, i64, i64),
+    l2: (i64, i64, i64),
     xb: i32,
-    dxb: f32,
-    dyb: f32,
+}
+
+impl Geometry {
+    /// From the snapped vertices (positive orientation), twice the area `d > 0` and the
+    /// anchor pixel. `1/d` is one 64-bit division (a 31-bit reciprocal `r` with `1/d = r
+    /// 2^-k` to 2^-30 relative), every weight a product and a shift: `dl1/dX = f2/d`,
+    /// `dl1/dY = -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with
+    /// `(e, f)` the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy`
+    /// (vertex 0 has `l1 = l2 = 0`).
+    fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
+        let off = |k: usize| {
+            (
+                fp[k].x as i64 - fp[0].x as i64,
+                fp[k].y as i64 - fp[0].y as i64,
+            )
+        };
+        let ((e1, f1), (e2, f2)) = (off(1), off(2));
+        let d = d.max(1) as u64;
+        let n = 64 - d.leading_zeros(); // d in [2^(n-1), 2^n)
+        let sh = n.saturating_sub(33);
+        let nn = n - sh; // <= 33
+        let r = ((1u64 << (nn + 30)) / (d >> sh)) as i64; // in (2^29, 2^31]
+        // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
+        // BARY_FRAC - n - 30).
+        let k = n + 30;
+        let scale = |x: i64| {
+            let p = mul_64(x, r);
+            let up = 4 + BARY_FRAC;
+            if k >= up {
+                p >> (k - up)
+            } else {
+                p.wrapping_shl(up - k)
+            }
+        };
+        // The anchor's offset from vertex 0, in sub-pixels (the weights are per pixel: / 16).
+        let dx = (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as i64;
+        let dy = (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as i64;
+        let plane = |gx: i64, gy: i64| {
+            (
+                gx,
+                gy,
+                (mul_64(gx, dx).wrapping_add(mul_64(gy, dy))) >> 4,
+            )
+        };
+        Geometry {
+            l1: plane(scale(f2), scale(-e2)),
+            l2: plane(scale(-f1), scale(e1)),
+            xb,
+        }
+    }
 }
 
 /// Scan-converts one triangle into the band (see the module docs).
@@ -619,16 +726,7 @@ fn raster<T, P, S>(
     let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
     let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
     let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
-    let geo = Geometry {
-        f1: fp[1].y as i64 - fp[0].y as i64,
-        f2: fp[2].y as i64 - fp[0].y as i64,
-        e1: fp[1].x as i64 - fp[0].x as i64,
-        e2: fp[2].x as i64 - fp[0].x as i64,
-        inv16: SUBPIXEL as f32 / tri.area2() as f32,
-        xb,
-        dxb: (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as f32 / SUBPIXEL as f32,
-        dyb: (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as f32 / SUBPIXEL as f32,
-    };
+    let geo = Geometry::new(fp, tri.area2(), xb, yb);
     let depth = Plane::new([v[0].depth, v[1].depth, v[2].depth], &geo);
     let width = ctx.camera.width as i32;
     let (row0, row1) = (ctx.row0, ctx.row1);

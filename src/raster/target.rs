@@ -172,12 +172,25 @@ impl EncodeTable {
     /// The table of `encoding`, computed in `T`'s own arithmetic (so firmware and host agree
     /// bit for bit when they build it with the same `T`).
     pub fn new<T: Real>(encoding: Encoding) -> Self {
-        let mut levels = [0u16; ENCODE_ENTRIES];
-        for (i, l) in levels.iter_mut().enumerate() {
+        let mut table = Self::zeroed();
+        table.fill::<T>(encoding);
+        table
+    }
+    /// A table of zeros (every pixel black) to [`EncodeTable::fill`] later: a `const fn`, so
+    /// that it can initialize a `static` (all zero bits: `.bss`, no flash).
+    pub const fn zeroed() -> Self {
+        EncodeTable {
+            encoding: Encoding::Linear,
+            levels: [0; ENCODE_ENTRIES],
+        }
+    }
+    /// Tabulates `encoding` in place (see [`EncodeTable::new`]).
+    pub fn fill<T: Real>(&mut self, encoding: Encoding) {
+        for (i, l) in self.levels.iter_mut().enumerate() {
             let x = T::from_fixed_i32(i as i32, ENCODE_INDEX_BITS);
             *l = quantize(encoding.encode(x), u16::MAX as u32) as u16;
         }
-        EncodeTable { encoding, levels }
+        self.encoding = encoding;
     }
     /// The encoding tabulated.
     pub fn encoding(&self) -> Encoding {

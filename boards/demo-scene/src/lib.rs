@@ -41,6 +41,7 @@
 use arealight::raster::{
     mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
     Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, Vertex,
+    VertexColour,
 };
 use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, Vec3};
 
@@ -99,7 +100,7 @@ pub struct MeshBuffers<T> {
     sphere_frame: [PreparedVertex<T>; SPHERE_VERTICES],
     torus_frame: [PreparedVertex<T>; TORUS_VERTICES],
     lamp_frame: [PreparedVertex<T>; SPHERE_VERTICES],
-    table: Option<EncodeTable>,
+    table: EncodeTable,
 }
 
 impl<T: Real> MeshBuffers<T> {
@@ -107,8 +108,10 @@ impl<T: Real> MeshBuffers<T> {
         Vec3::new(T::ZERO, T::ZERO, T::ZERO),
         Vec3::new(T::ZERO, T::ZERO, T::ZERO),
     );
-    /// Zeroed buffers ([`Demo::new`] fills them).
-    pub fn new() -> Self {
+    /// Zeroed buffers ([`Demo::new`] fills them). A `const fn`, so that firmware can place
+    /// them in a `static` initialized at link time (all zero bits: `.bss`, no flash), with no
+    /// copy through the stack (e.g. `static_cell::ConstStaticCell`).
+    pub const fn new() -> Self {
         MeshBuffers {
             sphere_vertices: [Self::ZERO_VERTEX; SPHERE_VERTICES],
             sphere_triangles: [[0; 3]; SPHERE_TRIANGLES],
@@ -117,7 +120,7 @@ impl<T: Real> MeshBuffers<T> {
             sphere_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
             torus_frame: [PreparedVertex::EMPTY; TORUS_VERTICES],
             lamp_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
-            table: None,
+            table: EncodeTable::zeroed(),
         }
     }
 }
@@ -227,7 +230,8 @@ impl<'a, T: Real> Demo<'a, T> {
         lit.encoding = Encoding::Gamma2;
         let mut emissive = DrawOptions::new(Shading::Gouraud);
         emissive.encoding = Encoding::Gamma2;
-        let table: &'a EncodeTable = table.insert(EncodeTable::new::<T>(Encoding::Gamma2));
+        table.fill::<T>(Encoding::Gamma2);
+        let table: &'a EncodeTable = table;
         Ok(Demo {
             camera,
             sphere: PreparedMesh::new(sphere, sphere_frame)?,
@@ -329,13 +333,45 @@ impl<'a, T: Real> Demo<'a, T> {
     /// ([`Stage::Shade`]); per pixel: only the lamp's (its constant colour). Returns the
     /// number of shader calls.
     pub fn shade(&mut self, frame: &Frame<T>) -> u32 {
+        self.shade_share(frame, 0, 1)
+    }
+
+    /// [`Demo::shade`] of this core's share of the visible vertices: those whose index is
+    /// `core` modulo `cores`. With two cores, each shades its half, then each takes the
+    /// other's colours through a [`ColourExchange`] ([`Demo::export_colours`],
+    /// [`Demo::import_colours`]): every visible vertex is shaded once per frame.
+    pub fn shade_share(&mut self, frame: &Frame<T>, core: usize, cores: usize) -> u32 {
         let camera = &self.camera;
         let red = Lit::new(&frame.lights, &self.red);
         let teal = Lit::new(&frame.lights, &self.teal);
         let glow = Glow(frame.lamp_colour);
-        self.sphere.shade(camera, &red, &self.lit)
-            + self.torus.shade(camera, &teal, &self.lit)
-            + self.lamp.shade(camera, &glow, &self.emissive)
+        let cores = cores.max(1);
+        let mine = |i: usize| i % cores == core;
+        self.sphere.shade_some(camera, &red, &self.lit, mine)
+            + self.torus.shade_some(camera, &teal, &self.lit, mine)
+            + self.lamp.shade_some(camera, &glow, &self.emissive, mine)
+    }
+
+    /// Writes this frame's vertex colours into `exchange` (after [`Demo::shade_share`]).
+    pub fn export_colours(&self, exchange: &mut ColourExchange) {
+        let copy = |dst: &mut [VertexColour], src: &PreparedMesh<'_, '_, T>| {
+            for (d, c) in dst.iter_mut().zip(src.colours()) {
+                *d = c;
+            }
+        };
+        copy(&mut exchange.sphere, &self.sphere);
+        copy(&mut exchange.torus, &self.torus);
+        copy(&mut exchange.lamp, &self.lamp);
+    }
+
+    /// Takes from `exchange` the colours of the vertices that core `core` of `cores` shaded
+    /// (what it exported this frame).
+    pub fn import_colours(&mut self, exchange: &ColourExchange, core: usize, cores: usize) {
+        let cores = cores.max(1);
+        let theirs = |i: usize| i % cores == core;
+        self.sphere.set_colours(exchange.sphere.iter().copied(), theirs);
+        self.torus.set_colours(exchange.torus.iter().copied(), theirs);
+        self.lamp.set_colours(exchange.lamp.iter().copied(), theirs);
     }
 
     /// [`Demo::transform`] then [`Demo::shade`].
@@ -376,6 +412,32 @@ impl<'a, T: Real> Demo<'a, T> {
             .lamp
             .draw(camera, band, &glow, &self.emissive, self.table)?);
         Ok(())
+    }
+}
+
+/// The shaded vertex colours of one frame, as one core hands them to another (see
+/// [`Demo::shade_share`]): 9 KiB.
+#[derive(Clone, Debug)]
+pub struct ColourExchange {
+    sphere: [VertexColour; SPHERE_VERTICES],
+    torus: [VertexColour; TORUS_VERTICES],
+    lamp: [VertexColour; SPHERE_VERTICES],
+}
+
+impl ColourExchange {
+    /// All black (a `const fn`, for a `static`).
+    pub const fn new() -> Self {
+        ColourExchange {
+            sphere: [VertexColour::BLACK; SPHERE_VERTICES],
+            torus: [VertexColour::BLACK; TORUS_VERTICES],
+            lamp: [VertexColour::BLACK; SPHERE_VERTICES],
+        }
+    }
+}
+
+impl Default for ColourExchange {
+    fn default() -> Self {
+        Self::new()
     }
 }
 

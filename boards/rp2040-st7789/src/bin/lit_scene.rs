@@ -19,8 +19,11 @@ use panic_probe as _;
 use arealight::raster::{Band, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
+use static_cell::ConstStaticCell;
 use demo_scene::{Demo, MeshBuffers, Stage, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 use embedded_hal::digital::OutputPin;
+use hal::dma::DMAExt;
+use rp2040_st7789::{BandSender, DmaBuffer};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock;
 use hal::fugit::RateExtU32;
@@ -40,6 +43,9 @@ use rp2040_hal as hal;
 #[link_section = ".boot2"]
 #[used]
 pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
+
+/// The scene's meshes, per-frame vertex data and gamma table (see step 9).
+static BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> = ConstStaticCell::new(MeshBuffers::new());
 
 /// The Pico's crystal.
 const XTAL_FREQ_HZ: u32 = 12_000_000;
@@ -97,7 +103,7 @@ fn run() -> ! {
     //    Pico-LCD-1.3; many bare 240x240 modules without a CS pin want MODE_3 instead).
     let sclk = pins.gpio10.into_function::<hal::gpio::FunctionSpi>();
     let mosi = pins.gpio11.into_function::<hal::gpio::FunctionSpi>();
-    let spi_bus = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sclk)).init(
+    let mut spi_bus = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sclk)).init(
         &mut pac.RESETS,
         clocks.peripheral_clock.freq(),
         62_500_000u32.Hz(),
@@ -105,35 +111,51 @@ fn run() -> ! {
     );
 
     // 6. The display's control pins: chip select, data/command, reset, backlight.
-    let cs = pins.gpio9.into_push_pull_output();
-    let dc = pins.gpio8.into_push_pull_output();
+    let mut cs = pins.gpio9.into_push_pull_output();
+    let mut dc = pins.gpio8.into_push_pull_output();
     let rst = pins.gpio12.into_push_pull_output();
     let mut backlight = pins.gpio13.into_push_pull_output();
 
-    // 7. embedded-hal 1.0 splits the bus (clock and data) from the device (the bus plus this
-    //    display's chip select): `ExclusiveDevice` is the device of a bus it alone uses.
-    let spi = ExclusiveDevice::new(spi_bus, cs, timer).unwrap();
-
-    // 8. The ST7789 driver (mipidsi): a 512-byte buffer in which it gathers pixels into SPI
-    //    writes, the reset pin, IPS colour inversion (the Pico-LCD-1.3 panel, like most
-    //    240x240 IPS modules, shows inverted colours without it), 240x240 of the chip's
-    //    240x320 memory. `init` resets the panel and sends the init sequence.
-    let spi_buffer = singleton!(: [u8; 512] = [0; 512]).unwrap();
-    let interface = SpiInterface::new(spi, dc, spi_buffer);
-    let mut display = Builder::new(ST7789, interface)
-        .display_size(WIDTH, HEIGHT)
-        .invert_colors(ColorInversion::Inverted)
-        .reset_pin(rst)
-        .init(&mut timer)
-        .unwrap();
+    // 7. The ST7789's reset and init sequence, by the mipidsi driver. embedded-hal 1.0 splits
+    //    the bus (clock and data) from the device (the bus plus this display's chip select):
+    //    `ExclusiveDevice` is the device of a bus it alone uses. The driver borrows the bus
+    //    and the pins (`&mut`): they come back when it is dropped, after the init. Its
+    //    options: IPS colour inversion (the Pico-LCD-1.3 panel, like most 240x240 IPS
+    //    modules, shows inverted colours without it), 240x240 of the chip's 240x320 memory.
+    {
+        let spi = ExclusiveDevice::new(&mut spi_bus, &mut cs, timer).unwrap();
+        let spi_buffer = singleton!(: [u8; 512] = [0; 512]).unwrap();
+        let interface = SpiInterface::new(spi, &mut dc, spi_buffer);
+        Builder::new(ST7789, interface)
+            .display_size(WIDTH, HEIGHT)
+            .invert_colors(ColorInversion::Inverted)
+            .reset_pin(rst)
+            .init(&mut timer)
+            .unwrap();
+    }
     backlight.set_high().unwrap();
+
+    // 8. The frames go out by DMA (see `rp2040_st7789::BandSender`): SPI1 again, now with
+    //    16-bit frames (a pixel per frame, big-endian on the wire), DMA channel 0, and a
+    //    7.5 KiB buffer that the DMA reads while the next band is drawn.
+    let (spi1, spi_pins) = spi_bus.free();
+    let spi16 = hal::spi::Spi::<_, _, _, 16>::new(spi1, spi_pins).init(
+        &mut pac.RESETS,
+        clocks.peripheral_clock.freq(),
+        62_500_000u32.Hz(),
+        embedded_hal::spi::MODE_0,
+    );
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    let dma_buffer = singleton!(: DmaBuffer = [0; BAND_PIXELS]).unwrap();
+    let mut display = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
 
     // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
     //    UV sphere and a torus), their per-frame vertex data and the gamma table (about
     //    85 KiB) live in a static buffer, filled once; the camera, materials and draw options
-    //    are set once. `singleton!` gives a `&'static mut` to a static, once (a second call
-    //    would return `None`).
-    let buffers = singleton!(: MeshBuffers<Fixed22> = MeshBuffers::new()).unwrap();
+    //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
+    //    stack, which 85 KiB would overflow on the second core's firmware); `take` hands out
+    //    its `&'static mut` once.
+    let buffers = BUFFERS.take();
     let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
 
     // 10. One band: 240x16 RGB565 pixels and their 16-bit depths (7.5 KiB each). The whole
@@ -149,7 +171,8 @@ fn run() -> ! {
     let mut n: u32 = 0;
     loop {
         let mut clock = || timer.get_counter_low();
-        let result = demo.render_frame(n, &mut band, &mut clock, |band| band.flush_to(&mut display));
+        let result = demo.render_frame(n, &mut band, &mut clock, |band| display.send(band));
+        // The last band's transfer ends the frame (timed with the next frame's first band).
         match result {
             Ok(report) => {
                 let us = |s: Stage| report.ticks[s as usize];

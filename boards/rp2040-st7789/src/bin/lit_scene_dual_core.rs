@@ -1,19 +1,23 @@
 //! The scene of `lit_scene.rs`, drawn by both of the RP2040's cores: core 0 draws the even
 //! bands (rows 0-15, 32-47, ...) and sends every band to the display, core 1 draws the odd
-//! bands and hands each one over. The frames are the same pixels as `lit_scene.rs`'s, in about
-//! half the time. Run it with `cargo run --release --bin lit_scene_dual_core`.
+//! bands and hands each one over. Each core transforms every vertex, but shades only half of
+//! the visible vertices (`Demo::shade_share`: even or odd indices), and the two swap their
+//! colours, so the light models are split between the cores too. The frames are the same
+//! pixels as `lit_scene.rs`'s. Run it with
+//! `cargo run --release --bin lit_scene_dual_core`.
 //!
 //! The board setup (clocks, timer, SPI, display) is step for step that of `lit_scene.rs`, whose
 //! comments explain it; the comments here are about the second core.
 //!
 //! How the cores cooperate, with no `unsafe` and no shared mutable state outside one mutex:
 //!
-//! - Each core has its own copy of everything it draws with: meshes, vertex cache, `Demo`, band
-//!   and depth band (the scene's `Demo` is not `Sync`, and both copies are built the same way,
-//!   so both cores compute identical frames).
+//! - Each core has its own copy of everything it draws with: meshes, per-frame vertex data,
+//!   `Demo`, band and depth band (both copies are built the same way, so both cores compute
+//!   identical frames; a vertex both cores shade gets the same colour on both).
 //! - [`HANDOFF`], behind a `critical_section::Mutex` (rp2040-hal's critical section is a
 //!   hardware spinlock, so it excludes the other core too), carries the frame number from core
-//!   0 to core 1 and each finished odd band (its first row and its pixels) from core 1 to core 0.
+//!   0 to core 1, each core's share of the vertex colours to the other, and each finished odd
+//!   band (its first row and its pixels) from core 1 to core 0.
 //! - A core that finds nothing to do waits for an event (`wfe`); the other core signals one
 //!   (`sev`) after every change to the handoff.
 #![no_std]
@@ -29,11 +33,14 @@ use core::cell::RefCell;
 use arealight::raster::{Band, DrawStats, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
+use static_cell::ConstStaticCell;
 use critical_section::Mutex;
 use demo_scene::{
-    Demo, MeshBuffers, VertexCache, BACKGROUND, BAND_PIXELS, BAND_ROWS, HEIGHT, PERIOD, WIDTH,
+    ColourExchange, Demo, Frame, MeshBuffers, BACKGROUND, BAND_PIXELS, BAND_ROWS, HEIGHT, PERIOD, WIDTH,
 };
 use embedded_hal::digital::OutputPin;
+use hal::dma::DMAExt;
+use rp2040_st7789::{BandSender, DmaBuffer};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock;
 use hal::fugit::RateExtU32;
@@ -53,11 +60,18 @@ pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 
 const XTAL_FREQ_HZ: u32 = 12_000_000;
 
-/// Gouraud shading with a vertex cache, as in `lit_scene.rs`.
+/// Gouraud shading, as in `lit_scene.rs`.
 const SHADING: Shading = Shading::Gouraud;
 
 /// The bands of a frame (15 of 16 rows).
 const BANDS: u16 = HEIGHT.div_ceil(BAND_ROWS);
+
+/// Each core's meshes, per-frame vertex data and gamma table (about 70 KiB each), initialized
+/// at link time (all zeros: no copy through a stack).
+static CORE0_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
+    ConstStaticCell::new(MeshBuffers::new());
+static CORE1_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
+    ConstStaticCell::new(MeshBuffers::new());
 
 /// Core 1's stack, in words: 16 KiB (the meshes, caches and bands are statics; the stack holds
 /// the rasterizer's clipping buffers, a frame's lights and the light models' locals).
@@ -73,6 +87,10 @@ struct Handoff {
     pixels: [Rgb565; BAND_PIXELS],
     /// ... and what drawing it did.
     stats: DrawStats,
+    /// `shaded[k]`: core k's share of this frame's vertex colours is in `colours[k]` (set by
+    /// core k, cleared by the other core once it has taken them).
+    shaded: [bool; 2],
+    colours: [ColourExchange; 2],
 }
 
 static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
@@ -85,7 +103,36 @@ static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
         shaded: 0,
         pixels: 0,
     },
+    shaded: [false; 2],
+    colours: [ColourExchange::new(), ColourExchange::new()],
 }));
+
+/// The cores' split of the vertex shading: core `core` shades the visible vertices of index
+/// `core` modulo 2, hands its colours to the other core and takes the other core's, so that
+/// both then hold every visible vertex's colour, each shaded once per frame.
+fn share_shading(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: usize) -> u32 {
+    let calls = demo.shade_share(frame, core, 2);
+    wait_for(|h| {
+        if h.shaded[core] {
+            return None;
+        }
+        demo.export_colours(&mut h.colours[core]);
+        h.shaded[core] = true;
+        Some(())
+    });
+    cortex_m::asm::sev();
+    let other = 1 - core;
+    wait_for(|h| {
+        if !h.shaded[other] {
+            return None;
+        }
+        demo.import_colours(&h.colours[other], other, 2);
+        h.shaded[other] = false;
+        Some(())
+    });
+    cortex_m::asm::sev();
+    calls
+}
 
 /// Runs `f` on the handoff under the lock until it returns `Some`, sleeping until the other
 /// core's next event between tries.
@@ -99,8 +146,8 @@ fn wait_for<R>(mut f: impl FnMut(&mut Handoff) -> Option<R>) -> R {
 }
 
 /// Core 1: draws the odd bands of each frame core 0 asks for, and hands each one over.
-fn core1(buffers: &'static mut MeshBuffers<Fixed22>, cache: &'static mut VertexCache<Fixed22>) {
-    let demo = Demo::<Fixed22>::new(buffers, SHADING, Some(cache)).unwrap();
+fn core1(buffers: &'static mut MeshBuffers<Fixed22>) {
+    let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
     // Core 1's band and depth band, in statics like core 0's (7.5 KiB each).
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
@@ -108,8 +155,14 @@ fn core1(buffers: &'static mut MeshBuffers<Fixed22>, cache: &'static mut VertexC
     loop {
         let n = wait_for(|h| h.frame.take());
         let frame = demo.frame(n).unwrap();
+        demo.transform(&frame);
+        // Counted with the first band handed over.
+        let mut shaded = share_shading(&mut demo, &frame, 1);
         for k in (1..BANDS).step_by(2) {
-            let mut stats = DrawStats::default();
+            let mut stats = DrawStats {
+                shaded: core::mem::take(&mut shaded),
+                ..DrawStats::default()
+            };
             band.move_to(k * BAND_ROWS);
             band.clear(BACKGROUND);
             demo.draw_band(&frame, &mut band, &mut stats).unwrap();
@@ -163,44 +216,54 @@ fn run() -> ! {
     );
     let sclk = pins.gpio10.into_function::<hal::gpio::FunctionSpi>();
     let mosi = pins.gpio11.into_function::<hal::gpio::FunctionSpi>();
-    let spi_bus = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sclk)).init(
+    let mut spi_bus = hal::spi::Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sclk)).init(
         &mut pac.RESETS,
         clocks.peripheral_clock.freq(),
         62_500_000u32.Hz(),
         embedded_hal::spi::MODE_0,
     );
-    let cs = pins.gpio9.into_push_pull_output();
-    let dc = pins.gpio8.into_push_pull_output();
+    let mut cs = pins.gpio9.into_push_pull_output();
+    let mut dc = pins.gpio8.into_push_pull_output();
     let rst = pins.gpio12.into_push_pull_output();
     let mut backlight = pins.gpio13.into_push_pull_output();
-    let spi = ExclusiveDevice::new(spi_bus, cs, timer).unwrap();
-    let spi_buffer = singleton!(: [u8; 512] = [0; 512]).unwrap();
-    let interface = SpiInterface::new(spi, dc, spi_buffer);
-    let mut display = Builder::new(ST7789, interface)
-        .display_size(WIDTH, HEIGHT)
-        .invert_colors(ColorInversion::Inverted)
-        .reset_pin(rst)
-        .init(&mut timer)
-        .unwrap();
+    {
+        let spi = ExclusiveDevice::new(&mut spi_bus, &mut cs, timer).unwrap();
+        let spi_buffer = singleton!(: [u8; 512] = [0; 512]).unwrap();
+        let interface = SpiInterface::new(spi, &mut dc, spi_buffer);
+        Builder::new(ST7789, interface)
+            .display_size(WIDTH, HEIGHT)
+            .invert_colors(ColorInversion::Inverted)
+            .reset_pin(rst)
+            .init(&mut timer)
+            .unwrap();
+    }
     backlight.set_high().unwrap();
+    let (spi1, spi_pins) = spi_bus.free();
+    let spi16 = hal::spi::Spi::<_, _, _, 16>::new(spi1, spi_pins).init(
+        &mut pac.RESETS,
+        clocks.peripheral_clock.freq(),
+        62_500_000u32.Hz(),
+        embedded_hal::spi::MODE_0,
+    );
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    let dma_buffer = singleton!(: DmaBuffer = [0; BAND_PIXELS]).unwrap();
+    let mut display = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
 
     // 9. Core 1: its meshes and vertex cache (statics, handed to it), its stack, and its
     //    program (`core1`, which builds its own `Demo` from them). The power-on state machine
     //    (PSM) and the FIFO between the cores are used once, to start it.
-    let core1_buffers = singleton!(: MeshBuffers<Fixed22> = MeshBuffers::new()).unwrap();
-    let core1_cache = singleton!(: VertexCache<Fixed22> = VertexCache::new()).unwrap();
+    let core1_buffers = CORE1_BUFFERS.take();
     let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
     let cores = multicore.cores();
     cores[1]
         .spawn(CORE1_STACK.take().unwrap(), move || {
-            core1(core1_buffers, core1_cache)
+            core1(core1_buffers)
         })
         .unwrap();
 
     // 10. Core 0's own scene and band, as in `lit_scene.rs`.
-    let buffers = singleton!(: MeshBuffers<Fixed22> = MeshBuffers::new()).unwrap();
-    let cache = singleton!(: VertexCache<Fixed22> = VertexCache::new()).unwrap();
-    let demo = Demo::<Fixed22>::new(buffers, SHADING, Some(cache)).unwrap();
+    let buffers = CORE0_BUFFERS.take();
+    let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
@@ -210,19 +273,26 @@ fn run() -> ! {
     //     which is free at that point), sending each to the display.
     let mut n: u32 = 0;
     loop {
-        let start = timer.get_counter();
+        let start = timer.get_counter_low();
         critical_section::with(|cs| HANDOFF.borrow_ref_mut(cs).frame = Some(n));
         cortex_m::asm::sev();
         let frame = demo.frame(n).unwrap();
-        let mut stats = DrawStats::default();
-        let (mut shade_us, mut wait_us, mut send_us) = (0u64, 0u64, 0u64);
+        let t_setup = timer.get_counter_low();
+        demo.transform(&frame);
+        let t_transform = timer.get_counter_low();
+        let mut stats = DrawStats {
+            shaded: share_shading(&mut demo, &frame, 0),
+            ..DrawStats::default()
+        };
+        let t_shade = timer.get_counter_low();
+        let (mut raster_us, mut wait_us, mut send_us) = (0u32, 0u32, 0u32);
         for k in 0..BANDS {
-            let t0 = timer.get_counter();
+            let t0 = timer.get_counter_low();
             if k % 2 == 0 {
                 band.move_to(k * BAND_ROWS);
                 band.clear(BACKGROUND);
                 demo.draw_band(&frame, &mut band, &mut stats).unwrap();
-                shade_us += (timer.get_counter() - t0).to_micros();
+                raster_us += timer.get_counter_low().wrapping_sub(t0);
             } else {
                 let s = wait_for(|h| {
                     let y0 = h.ready.take()?;
@@ -232,24 +302,26 @@ fn run() -> ! {
                 });
                 // Core 1 may be waiting to hand over its next band.
                 cortex_m::asm::sev();
-                stats.triangles += s.triangles;
                 stats.rasterized += s.rasterized;
                 stats.shaded += s.shaded;
                 stats.pixels += s.pixels;
-                wait_us += (timer.get_counter() - t0).to_micros();
+                wait_us += timer.get_counter_low().wrapping_sub(t0);
             }
-            let t1 = timer.get_counter();
-            if let Err(e) = band.flush_to(&mut display) {
+            let t1 = timer.get_counter_low();
+            if let Err(e) = display.send(&band) {
                 defmt::error!("frame {}: {}", n, defmt::Debug2Format(&e));
             }
-            send_us += (timer.get_counter() - t1).to_micros();
+            send_us += timer.get_counter_low().wrapping_sub(t1);
         }
-        let total_us = (timer.get_counter() - start).to_micros();
+        let total_us = timer.get_counter_low().wrapping_sub(start);
         defmt::info!(
-            "frame {=u32}: {=u64} us ({=u64} us shading on core 0, {=u64} us waiting for core 1, {=u64} us SPI), {} shader calls, {} pixels, {} triangle setups",
+            "frame {=u32}: {=u32} us on core 0 (setup {=u32}, transform {=u32}, shade {=u32}, raster {=u32}, waiting for core 1 {=u32}, flush {=u32}), {=u32} shader calls on both cores, {=u32} pixels, {=u32} triangle setups",
             n,
             total_us,
-            shade_us,
+            t_setup.wrapping_sub(start),
+            t_transform.wrapping_sub(t_setup),
+            t_shade.wrapping_sub(t_transform),
+            raster_us,
             wait_us,
             send_us,
             stats.shaded,

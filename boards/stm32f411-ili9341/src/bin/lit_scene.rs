@@ -17,11 +17,11 @@ use defmt_rtt as _;
 // ... and the panic handler: prints the panic message through defmt, then halts the core.
 use panic_probe as _;
 
-use arealight::raster::{render_in_bands, Band, DrawStats, RasterError, Rgb565, Shading};
+use arealight::raster::{Band, Rgb565, Shading};
 use cortex_m::peripheral::DWT;
 use cortex_m::singleton;
 use cortex_m_rt::entry;
-use demo_scene::{Demo, MeshBuffers, BACKGROUND, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
+use demo_scene::{Demo, MeshBuffers, Stage, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 use embedded_graphics_core::pixelcolor::Rgb565 as EgRgb565;
 use embedded_graphics_core::prelude::{DrawTarget, RgbColor};
 use embedded_hal_bus::spi::ExclusiveDevice;
@@ -32,12 +32,13 @@ use mipidsi::Builder;
 use stm32f4xx_hal::spi::{Mode, Phase, Polarity, SpiExt};
 use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 
-/// Where the shader runs: at every visible pixel (Lambert and Phong of the polygon and the
-/// sphere light per pixel, about 7000 instructions: the area lights' soft, shaped highlights).
-/// `Shading::Gouraud` evaluates them at the vertices only: about 3 times faster per frame
-/// (pass a `VertexCache` to `Demo::new` then, as the RP2040 firmware does), faceted
-/// highlights.
-const SHADING: Shading = Shading::PerPixel;
+/// Where the shader runs. Gouraud: the light models (Lambert and Phong of the polygon and
+/// the sphere light) once per frame at each visible vertex (about 400), the colours
+/// interpolated across the triangles in integers: real-time rates, faceted highlights.
+/// `Shading::PerPixel` runs them at every visible pixel (about 13 000, a few thousand
+/// instructions each): the area lights' soft, shaped highlights, several times slower (see
+/// README.md for both, measured).
+const SHADING: Shading = Shading::Gouraud;
 
 /// The core clock: the F411's maximum (from the Black Pill's 25 MHz crystal).
 const SYSCLK_MHZ: u32 = 100;
@@ -47,14 +48,6 @@ const SPI_MHZ: u32 = 25;
 /// The ILI9341 is 240x320 (portrait): the 240x240 scene goes in its middle rows.
 const PANEL_HEIGHT: u16 = 320;
 const TOP: u16 = (PANEL_HEIGHT - HEIGHT) / 2;
-
-/// Why a frame failed: the rasterizer refused something or the display did not answer.
-#[derive(Debug)]
-#[allow(dead_code)] // the fields are read through `Debug` (the error log line)
-enum FrameError<E> {
-    Raster(RasterError),
-    Display(E),
-}
 
 #[entry]
 fn main() -> ! {
@@ -121,12 +114,12 @@ fn main() -> ! {
     backlight.set_high();
 
     // 9. The scene (shared with the RP2040 firmware: boards/demo-scene). Its meshes (a UV
-    //    sphere and a torus, about 10 KiB) are generated once into a static buffer; the
-    //    camera, materials and draw options are set once. `singleton!` gives a `&'static mut`
-    //    to a static, once (a second call would return `None`). No vertex cache: it only
-    //    serves Gouraud shading (the RP2040 firmware uses one).
+    //    sphere and a torus), their per-frame vertex data and the gamma table (about
+    //    85 KiB) live in a static buffer, filled once; the camera, materials and draw options
+    //    are set once. `singleton!` gives a `&'static mut` to a static, once (a second call
+    //    would return `None`).
     let buffers = singleton!(: MeshBuffers<f32> = MeshBuffers::new()).unwrap();
-    let demo = Demo::<f32>::new(buffers, SHADING, None).unwrap();
+    let mut demo = Demo::<f32>::new(buffers, SHADING).unwrap();
 
     // 10. One band: 240x16 RGB565 pixels and their 16-bit depths (7.5 KiB each). The whole
     //     frame is rendered through it, 15 times per frame.
@@ -134,52 +127,39 @@ fn main() -> ! {
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
 
-    // 11. The animation: frame n shows phase n / PERIOD; each frame is timed in core cycles,
-    //     split into shading (the rasterizer and the light models) and sending (SPI).
+    // 11. The animation: frame n shows phase n / PERIOD. `render_frame` does the whole frame
+    //     (the lights, every vertex transformed and shaded once, then the bands, each sent
+    //     as soon as it is drawn) and times its stages in core cycles (DWT).
     let mut n: u32 = 0;
     loop {
-        let start = DWT::cycle_count();
-        // The lights and transforms of this frame (the lamp's position, the torus's turn).
-        let frame = demo.frame(n).unwrap();
-        let mut stats = DrawStats::default();
-        let (mut shade, mut send) = (0u32, 0u32);
-        let result = render_in_bands(
-            &mut band,
-            HEIGHT,
-            BACKGROUND,
-            // Draw: the band has been moved to its rows and cleared; draw the scene into it.
-            |band| {
-                let t0 = DWT::cycle_count();
-                let r = demo.draw_band(&frame, band, &mut stats);
-                shade = shade.wrapping_add(DWT::cycle_count().wrapping_sub(t0));
-                r.map_err(FrameError::Raster)
-            },
-            // Flush: send the band's rows to the panel rows TOP + y0 .. (one address window,
-            // then the pixels, converted to embedded-graphics' Rgb565: the same bits).
-            |band| {
-                let t0 = DWT::cycle_count();
-                let (y0, last) = (TOP + band.y0(), TOP + band.y0() + band.rows() - 1);
-                let colours = band.pixels().iter().map(|&p| EgRgb565::from(p));
-                let r = display.set_pixels(0, y0, WIDTH - 1, last, colours);
-                send = send.wrapping_add(DWT::cycle_count().wrapping_sub(t0));
-                r.map_err(FrameError::Display)
-            },
-        );
-        if let Err(e) = result {
-            defmt::error!("frame {}: {}", n, defmt::Debug2Format(&e));
+        let result = demo.render_frame(n, &mut band, &mut DWT::cycle_count, |band| {
+            // Send the band's rows to the panel rows TOP + y0 .. (one address window, then
+            // the pixels, converted to embedded-graphics' Rgb565: the same bits).
+            let (y0, last) = (TOP + band.y0(), TOP + band.y0() + band.rows() - 1);
+            let colours = band.pixels().iter().map(|&p| EgRgb565::from(p));
+            display.set_pixels(0, y0, WIDTH - 1, last, colours)
+        });
+        match result {
+            Ok(report) => {
+                let c = |s: Stage| report.ticks[s as usize];
+                let cycles = report.total();
+                defmt::info!(
+                    "frame {=u32}: {=u32} cycles = {=u32} ms (setup {=u32}, transform {=u32}, shade {=u32}, raster {=u32}, flush {=u32}), {=u32} shader calls, {=u32} pixels, {=u32} triangle setups",
+                    n,
+                    cycles,
+                    cycles / (SYSCLK_MHZ * 1000),
+                    c(Stage::Setup),
+                    c(Stage::Transform),
+                    c(Stage::Shade),
+                    c(Stage::Raster),
+                    c(Stage::Flush),
+                    report.stats.shaded,
+                    report.stats.pixels,
+                    report.stats.rasterized
+                );
+            }
+            Err(e) => defmt::error!("frame {=u32}: {}", n, defmt::Debug2Format(&e)),
         }
-        let cycles = DWT::cycle_count().wrapping_sub(start);
-        defmt::info!(
-            "frame {=u32}: {=u32} cycles = {=u32} ms ({=u32} shading, {=u32} SPI), {} shader calls, {} pixels, {} triangle setups",
-            n,
-            cycles,
-            cycles / (SYSCLK_MHZ * 1000),
-            shade,
-            send,
-            stats.shaded,
-            stats.pixels,
-            stats.rasterized
-        );
         if n % PERIOD == PERIOD - 1 {
             defmt::info!("one period ({=u32} frames) done", PERIOD);
         }

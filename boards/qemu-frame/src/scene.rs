@@ -1,0 +1,47 @@
+//! What the firmware and the host render, and the only code that calls `demo_scene`'s API:
+//! shared by `src/main.rs` and `host-sim/tests/qemu_frame.rs` (included there with `#[path]`),
+//! so both sides render the same frames the same way, and a change of that API is adapted here
+//! once.
+//!
+//! It names the scene `crate::demo_scene`: the firmware's `extern crate`, the host test's
+//! module (of demo-scene's source, included with `#[path]`).
+
+use crate::demo_scene::{Demo, FrameError, FrameReport, MeshBuffers};
+use arealight::raster::{Band, RasterError, Rgb565, Shading};
+
+/// The frames rendered, in this order, in every mode.
+pub const FRAMES: [u32; 2] = [0, 30];
+
+/// The shading modes, by their name in the output: Gouraud (the light models at the vertices)
+/// and per pixel (the STM32F411 firmware's mode).
+pub const MODES: [(&str, Shading); 2] = [
+    ("gouraud", Shading::Gouraud),
+    ("per_pixel", Shading::PerPixel),
+];
+
+/// The storage a [`Demo`] borrows: the meshes and their per-frame data (about 77 KiB in
+/// `f32`). The firmware keeps it in a `static` with the constant initializer `Storage::new()`.
+pub type Storage = MeshBuffers<f32>;
+
+/// The demo scene in `f32` with `shading`.
+///
+/// # Errors
+/// `Demo::new`'s (none with the scene's constants).
+pub fn demo(storage: &mut Storage, shading: Shading) -> Result<Demo<'_, f32>, RasterError> {
+    Demo::new(storage, shading)
+}
+
+/// Renders frame `n` of `demo` through `band`, as every board does: `clock` is read between
+/// the stages, `flush` gets each finished band, top to bottom.
+///
+/// # Errors
+/// The first error of the rasterizer or of `flush`.
+pub fn render<E>(
+    demo: &mut Demo<'_, f32>,
+    n: u32,
+    band: &mut Band<'_, Rgb565>,
+    clock: &mut impl FnMut() -> u32,
+    flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
+) -> Result<FrameReport, FrameError<E>> {
+    demo.render_frame(n, band, clock, flush)
+}
