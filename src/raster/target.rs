@@ -158,9 +158,10 @@ pub const ENCODE_ENTRIES: usize = (1 << ENCODE_INDEX_BITS) + 1;
 /// about 3300 instructions per pixel in `Fixed22` on a Cortex-M0+).
 ///
 /// Accuracy: the linear value is rounded to 1/4096 before encoding, so a channel can differ
-/// from [`encode_pixel`]'s by one level of the pixel format where the exact value lies within
-/// 1/8192 of a rounding boundary (`tests/raster_prepared.rs` bounds it by one level over every
-/// input). Size: 8 KiB (4097 16-bit levels); build it once (`static`, `singleton!` or `main`'s
+/// from [`encode_pixel`]'s where the exact value lies near a rounding boundary: by at most one
+/// level of RGB565 for every encoding, and of RGB888 for `Linear` and `Srgb`; by up to 3
+/// levels of RGB888 for `Gamma2` near black, where the square root is steep (measured over
+/// every input on a 1/65536 grid in `tests/raster_prepared.rs`). Size: 8 KiB (4097 16-bit levels); build it once (`static`, `singleton!` or `main`'s
 /// frame) and share it between draw calls. Cost to build: 4097 [`Encoding::encode`] calls.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EncodeTable {

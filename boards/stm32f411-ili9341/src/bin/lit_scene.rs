@@ -20,6 +20,7 @@ use panic_probe as _;
 use arealight::raster::{Band, Rgb565, Shading};
 use cortex_m::peripheral::DWT;
 use cortex_m::singleton;
+use static_cell::ConstStaticCell;
 use cortex_m_rt::entry;
 use demo_scene::{Demo, MeshBuffers, Stage, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 use embedded_graphics_core::pixelcolor::Rgb565 as EgRgb565;
@@ -39,6 +40,9 @@ use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 /// instructions each): the area lights' soft, shaped highlights, several times slower (see
 /// README.md for both, measured).
 const SHADING: Shading = Shading::Gouraud;
+
+/// The scene's meshes, per-frame vertex data and gamma table (see step 9).
+static BUFFERS: ConstStaticCell<MeshBuffers<f32>> = ConstStaticCell::new(MeshBuffers::new());
 
 /// The core clock: the F411's maximum (from the Black Pill's 25 MHz crystal).
 const SYSCLK_MHZ: u32 = 100;
@@ -116,9 +120,10 @@ fn main() -> ! {
     // 9. The scene (shared with the RP2040 firmware: boards/demo-scene). Its meshes (a UV
     //    sphere and a torus), their per-frame vertex data and the gamma table (about
     //    85 KiB) live in a static buffer, filled once; the camera, materials and draw options
-    //    are set once. `singleton!` gives a `&'static mut` to a static, once (a second call
-    //    would return `None`).
-    let buffers = singleton!(: MeshBuffers<f32> = MeshBuffers::new()).unwrap();
+    //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
+    //    stack, which would need more than the F411's 128 KiB at start-up); `take` hands out
+    //    its `&'static mut` once.
+    let buffers = BUFFERS.take();
     let mut demo = Demo::<f32>::new(buffers, SHADING).unwrap();
 
     // 10. One band: 240x16 RGB565 pixels and their 16-bit depths (7.5 KiB each). The whole
