@@ -216,6 +216,17 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     /// shaded colours. Cost per vertex: 2 x 9 multiply-adds, 1 normalization, 1 division,
     /// the projection (~15 operations in `T`).
     pub fn transform(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
+        self.transform_with(camera, transform, true);
+    }
+
+    /// [`PreparedMesh::transform`] without the normals (left zero): for a mesh whose shader
+    /// does not read them (an emissive object), it saves a normal transform and a
+    /// normalization per vertex.
+    pub fn transform_unlit(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
+        self.transform_with(camera, transform, false);
+    }
+
+    fn transform_with(&mut self, camera: &Camera<T>, transform: &Affine<T>, normals: bool) {
         let (near, far) = (camera.near, camera.far);
         // q = a - b / z in perspective, (z - near) / (far - near) orthographic.
         let range = far - near;
@@ -234,10 +245,12 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 clipped = true;
                 continue;
             }
-            let n = transform
-                .normal(src.normal)
-                .normalize()
-                .unwrap_or(Vec3::new(T::ZERO, T::ZERO, T::ZERO));
+            let zero = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
+            let n = if normals {
+                transform.normal(src.normal).normalize().unwrap_or(zero)
+            } else {
+                zero
+            };
             let c = camera.clip(p);
             let d = plane_distances(&c, near, far);
             let mut outside = 0u8;

@@ -139,12 +139,22 @@ pub struct Demo<'a, T> {
     lamp: PreparedMesh<'a, 'a, T>,
     red: Material<T>,
     teal: Material<T>,
-    /// Options for the lit objects (the shading mode chosen by the firmware).
-    lit: DrawOptions<T>,
+    /// Options for the sphere and the torus (the shading mode chosen by the firmware, per
+    /// object: [`Demo::set_shading`]).
+    lit: [DrawOptions<T>; 2],
     /// Options for the lamp: an emissive colour, Gouraud.
     emissive: DrawOptions<T>,
     /// Gamma 2 (one square root per channel; within 0.05 of sRGB), tabulated.
     table: &'a EncodeTable,
+}
+
+/// The scene's lit objects (for [`Demo::set_shading`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Object {
+    /// The red sphere (about 5 000 pixels).
+    Sphere = 0,
+    /// The teal torus (about 6 000 pixels).
+    Torus = 1,
 }
 
 /// What changes from frame to frame: the lights and the objects' transforms.
@@ -248,10 +258,16 @@ impl<'a, T: Real> Demo<'a, T> {
                 Rgb::from_f64([0.5, 0.5, 0.5]),
                 48,
             )?,
-            lit,
+            lit: [lit, lit],
             emissive,
             table,
         })
+    }
+
+    /// Chooses the shading of one lit object (the lamp is always its flat colour): Gouraud
+    /// where the chip must, per pixel where it can afford the area lights' exact highlights.
+    pub fn set_shading(&mut self, object: Object, shading: Shading) {
+        self.lit[object as usize].shading = shading;
     }
 
     /// The camera.
@@ -326,7 +342,8 @@ impl<'a, T: Real> Demo<'a, T> {
         let [s, t, l] = &frame.transforms;
         self.sphere.transform(&self.camera, s);
         self.torus.transform(&self.camera, t);
-        self.lamp.transform(&self.camera, l);
+        // The lamp's shader is its colour alone: no normals.
+        self.lamp.transform_unlit(&self.camera, l);
     }
 
     /// Gouraud: shades the visible vertices of the three objects once each
@@ -347,8 +364,8 @@ impl<'a, T: Real> Demo<'a, T> {
         let glow = Glow(frame.lamp_colour);
         let cores = cores.max(1);
         let mine = |i: usize| i % cores == core;
-        self.sphere.shade_some(camera, &red, &self.lit, mine)
-            + self.torus.shade_some(camera, &teal, &self.lit, mine)
+        self.sphere.shade_some(camera, &red, &self.lit[0], mine)
+            + self.torus.shade_some(camera, &teal, &self.lit[1], mine)
             + self.lamp.shade_some(camera, &glow, &self.emissive, mine)
     }
 
@@ -403,10 +420,10 @@ impl<'a, T: Real> Demo<'a, T> {
         let teal = Lit::new(&frame.lights, &self.teal);
         add(self
             .sphere
-            .draw(camera, band, &red, &self.lit, self.table)?);
+            .draw(camera, band, &red, &self.lit[0], self.table)?);
         add(self
             .torus
-            .draw(camera, band, &teal, &self.lit, self.table)?);
+            .draw(camera, band, &teal, &self.lit[1], self.table)?);
         let glow = Glow(frame.lamp_colour);
         add(self
             .lamp

@@ -190,7 +190,7 @@ fn run_mode(
     storage: &mut scene::Storage,
     band: &mut Band<'_, Rgb565>,
     sent: &mut [Rgb565; BAND_PIXELS],
-    (mode, shading): (&str, arealight::raster::Shading),
+    (mode, shading): (&str, [arealight::raster::Shading; 2]),
     line: &mut Line,
 ) {
     let mut demo = match scene::demo(storage, shading) {

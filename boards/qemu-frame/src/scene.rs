@@ -6,29 +6,34 @@
 //! It names the scene `crate::demo_scene`: the firmware's `extern crate`, the host test's
 //! module (of demo-scene's source, included with `#[path]`).
 
-use crate::demo_scene::{Demo, FrameError, FrameReport, MeshBuffers};
+use crate::demo_scene::{Demo, FrameError, FrameReport, MeshBuffers, Object};
 use arealight::raster::{Band, RasterError, Rgb565, Shading};
 
 /// The frames rendered, in this order, in every mode.
 pub const FRAMES: [u32; 2] = [0, 30];
 
-/// The shading modes, by their name in the output: Gouraud (the light models at the vertices)
-/// and per pixel (the STM32F411 firmware's mode).
-pub const MODES: [(&str, Shading); 2] = [
-    ("gouraud", Shading::Gouraud),
-    ("per_pixel", Shading::PerPixel),
+/// The shading modes, by their name in the output, as the shading of the sphere and of the
+/// torus: Gouraud (the light models at the vertices: the firmware's mode), per pixel on the
+/// sphere alone (its broad highlight is where Gouraud shows its facets), per pixel throughout.
+pub const MODES: [(&str, [Shading; 2]); 3] = [
+    ("gouraud", [Shading::Gouraud, Shading::Gouraud]),
+    ("sphere_per_pixel", [Shading::PerPixel, Shading::Gouraud]),
+    ("per_pixel", [Shading::PerPixel, Shading::PerPixel]),
 ];
 
 /// The storage a [`Demo`] borrows: the meshes and their per-frame data (about 77 KiB in
 /// `f32`). The firmware keeps it in a `static` with the constant initializer `Storage::new()`.
 pub type Storage = MeshBuffers<f32>;
 
-/// The demo scene in `f32` with `shading`.
+/// The demo scene in `f32` with `shading` for the sphere and the torus.
 ///
 /// # Errors
 /// `Demo::new`'s (none with the scene's constants).
-pub fn demo(storage: &mut Storage, shading: Shading) -> Result<Demo<'_, f32>, RasterError> {
-    Demo::new(storage, shading)
+pub fn demo(storage: &mut Storage, shading: [Shading; 2]) -> Result<Demo<'_, f32>, RasterError> {
+    let mut demo = Demo::new(storage, shading[0])?;
+    demo.set_shading(Object::Sphere, shading[0]);
+    demo.set_shading(Object::Torus, shading[1]);
+    Ok(demo)
 }
 
 /// Renders frame `n` of `demo` through `band`, as every board does: `clock` is read between
