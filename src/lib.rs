@@ -5,7 +5,8 @@
 //! irradiance of Ramamoorthi and Hanrahan, written once over a scalar trait ([`Real`]) and
 //! instantiated for `f64` (the reference), `f32` and [`Fast32`] (f32 with cheap `sqrt`/`atan2`).
 //!
-//! `#![no_std]`, no allocation, no `unsafe`, no panics: constructors validate and return
+//! `#![no_std]`, no allocation, no panics, no `unsafe` but the audited hardware square root of
+//! FPU targets ([`real::hw`]): constructors validate and return
 //! [`Result`]; per-sample functions return a documented finite fallback (0) for inputs that
 //! have no value, and never NaN or infinity.
 //!
@@ -45,7 +46,8 @@
 //! # Ok::<(), arealight::Error>(())
 //! ```
 #![no_std]
-#![forbid(unsafe_code)]
+// The only `unsafe` is the audited hardware square root, `real::hw` (allowed there alone).
+#![deny(unsafe_code)]
 #![deny(missing_docs)]
 #![warn(clippy::all)]
 // `!(x > y)` is deliberate throughout: unlike `x <= y` it is true when x is NaN, which is what

@@ -61,7 +61,7 @@ use crate::cap::{CapLight, SphereLight};
 use crate::hemisphere::HemisphereLight;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
-use crate::polygon::{for_each_clipped_edge, ApexFan, PolygonLight};
+use crate::polygon::{for_each_clipped_edge, PolygonLight};
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
 #[cfg(any(feature = "cap", feature = "hemisphere"))]
@@ -116,7 +116,7 @@ impl<T: Real> HemisphereLight<T> {
         } else {
             sine_power_integral(k, T::PI - w, s, -c)
         };
-        let v = lobe.hemi_cos_scale * (s.powu(m + 2) / T::from_u32(k) + c * tail);
+        let v = lobe.hemi_cos_scale * (s.powu(m + 2).div_u32(k) + c * tail);
         v.clamp01()
     }
 }
@@ -158,10 +158,9 @@ fn cap_boundary_sums<T: Real>(m: u32, x: T, sin_x: T, c: T, s: T, cs: T, ss: T) 
         let v2 = v * (T::TWO - v);
         let mut pw = if parity == 0 { T::ONE - v2 } else { d };
         for i in 1..m {
-            let fi = T::from_u32(i);
             let h = f - g;
             let f_new = f - t * h;
-            g = fi * (g + t * h) / (fi + T::ONE);
+            g = (g + t * h).mul_u32(i).div_u32(i + 1);
             f = f_new;
             if i & 1 == parity {
                 fsum += pw * f;
@@ -171,9 +170,8 @@ fn cap_boundary_sums<T: Real>(m: u32, x: T, sin_x: T, c: T, s: T, cs: T, ss: T) 
         }
     } else {
         for i in 1..m {
-            let fi = T::from_u32(i);
             let f_new = a * f + b * g;
-            let g_new = fi * (b * f + a * g) / (fi + T::ONE);
+            let g_new = (b * f + a * g).mul_u32(i).div_u32(i + 1);
             f = f_new;
             g = g_new;
             if i & 1 == parity {
@@ -294,7 +292,7 @@ fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b
     let mut sum = t;
     let mut i = start + 2;
     while i <= n {
-        t = (l + l2 + f * T::from_u32(i - 1) * t) / T::from_u32(i);
+        t = (l + l2 + f.mul_u32(i - 1) * t).div_u32(i);
         l *= g2;
         l2 *= a2;
         sum += t;
@@ -318,39 +316,55 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         let m = lobe.m;
         let even = m & 1 == 0;
         let mut sum = T::ZERO;
-        let mut fan = ApexFan::new(r);
+        // The solid angle of the clipped projection (even m), as `ApexFan` sums it, from the
+        // quantities the Phong terms compute anyway.
+        let mut fan = T::ZERO;
+        // The last edge's end, its direction and r . direction: the next edge starts there
+        // unless a horizon arc came between, so each vertex is normalized once.
+        let mut last: Option<(Vec3<T>, Vec3<T>, T)> = None;
         for_each_clipped_edge(self.vertices(), p, r, |e| {
-            if even {
-                fan.add(&e);
-            }
             if e.horizon {
-                if !even {
-                    // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x.
+                // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
+                // m the fan's triangle is the same signed arc.
+                if even {
+                    fan += e.horizon_angle(r);
+                } else {
                     sum += e.horizon_angle(r);
                 }
                 return;
             }
+            let start = match last {
+                Some((at, dir, rd)) if at == e.ua => Some((dir, rd)),
+                _ => e.ua.normalize().map(|a| (a, r.dot(a))),
+            };
+            let end = e.ub.normalize().map(|b| (b, r.dot(b)));
+            last = end.map(|(b, rb)| (e.ub, b, rb));
+            let (Some((ua, ra)), Some((_, rb))) = (start, end) else {
+                return;
+            };
             let g = e.ua.cross(e.d);
             let Some((gu, glen)) = g.normalize_with_length() else {
                 return; // An edge seen end-on: x = 0 contributes nothing.
             };
+            // x = angle(ua, ub) with a consistent (cos x, sin x) pair from (ua.ub, |G|), both
+            // proportional to |ua| |ub|: the pair normalized.
+            let dot = e.ua.dot(e.ub);
+            let Some(cs) = Vec3::new(dot, glen, T::ZERO).normalize() else {
+                return;
+            };
+            let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
+            let rg = r.dot(gu);
+            if even {
+                // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
+                // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
+                fan += T::TWO * (rg * sin_x).atan2(T::ONE + cos_x + ra + rb);
+            }
             if m == 0 {
                 return;
             }
-            let Some(ua) = e.ua.normalize() else {
-                return;
-            };
-            // x = angle(ua, ub) with a consistent (cos x, sin x) pair from (ua.ub, |G|), both
-            // proportional to |ua| |ub|.
-            let dot = e.ua.dot(e.ub);
-            let x = glen.atan2(dot);
-            let scale = dot.abs().max(glen);
-            let (cd, sd) = (dot / scale, glen / scale);
-            let inv = T::ONE / (cd * cd + sd * sd).sqrt();
-            let (cos_x, sin_x) = ((cd * inv).clamp(-T::ONE, T::ONE), (sd * inv).clamp01());
-            let rg = r.dot(gu);
-            let perp = gu.cross(ua);
-            let (ra, rp) = (r.dot(ua), r.dot(perp));
+            let rp = r.dot(gu.cross(ua));
+            // x itself enters only the sums of even order (odd m).
+            let x = if even { T::ZERO } else { glen.atan2(dot) };
             // f = a^2 + b^2 = 1 - (r.gu)^2: the second form is exact to an ULP near 1, where
             // the recurrence raises f to the power m/2 (see cos_sin_between).
             let f = if rg.abs() < T::HALF {
@@ -361,7 +375,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             sum += rg * cos_sin_power_integral_sum(m - 1, x, cos_x, sin_x, ra, rp, f);
         });
         if even {
-            sum += fan.total();
+            sum += fan;
         }
         Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
     }
@@ -369,8 +383,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[phong_polygon]`: Phong illumination at `p` from the polygon (Snyder eq. 25), clipped to
     /// the hemisphere around `r`, in [0, 1].
     ///
-    /// Accuracy: see the README's table. Cost per edge: that of [`PolygonLight::lambert`] plus
-    /// 2 cross products and `m/2` recurrence steps of ~6 operations (plus 1 atan2 for even m).
+    /// Accuracy: see the README's table. Cost per clipped edge: 2 cross products, 3
+    /// normalizations (the edge's end vertex, reused as the next edge's start; the edge's
+    /// plane normal; the `(cos x, sin x)` pair), ~5 dot products, 1 atan2 (`x` for odd m, the
+    /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
+    /// and a division by the step's integer ([`Real::div_u32`]).
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane.
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {

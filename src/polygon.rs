@@ -199,9 +199,10 @@ pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: 
         return T::ZERO;
     }
     let (g, d) = g.rescale(m);
-    let s = g.length();
+    // |G| and 1/|G| together (fixed point: one rsqrt, no division).
+    let (s, inv) = g.dot(g).sqrt_rsqrt();
     let theta = (s * d).atan2(ua.dot(ub));
-    (theta * g.dot(k) / s).finite_or_zero()
+    (theta * g.dot(k) * inv).finite_or_zero()
 }
 
 /// The signed solid angle of a ring clipped to the hemisphere `u.k >= 0`, as a fan of spherical

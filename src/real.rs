@@ -5,7 +5,7 @@
 //! | type | what it is | sqrt / atan2 / sin / cos |
 //! |---|---|---|
 //! | `f64` | the reference | `libm` (correctly rounded sqrt, atan2 within 1 ULP) |
-//! | `f32` | the firmware float path | `libm` (`sqrtf`, `atan2f`, ...) |
+//! | `f32` | the firmware float path | `libm` (`atan2f`, ...); `sqrt` is `VSQRT.F32` on FPU targets (`eabihf`), `libm::sqrtf` elsewhere: see [`hw`] |
 //! | [`Fast32`] | f32 with the crate's own cheap approximations | see [`fast32`] |
 //!
 //! The trait is sealed: the crate's models rely on the error bounds of each backend, which are
@@ -22,6 +22,7 @@ pub mod fast32;
 pub use fast32::Fast32;
 #[cfg(feature = "fixed")]
 pub mod fixed22;
+pub mod hw;
 #[cfg(feature = "fixed")]
 pub use fixed22::Fixed22;
 
@@ -249,6 +250,20 @@ pub trait Real:
     fn from_fixed_i32(x: i32, frac: u32) -> Self {
         Self::from_f64(f64::from(x) / f64::from(1u32 << frac.min(30)))
     }
+    /// `self / n` for a positive integer `n`: the same value as `self / Self::from_u32(n)` on
+    /// every backend (the floats divide; [`Fixed22`] divides its raw bits by `n` through a
+    /// reciprocal table, bit-identical to its `/` and a fraction of its cost). The Phong
+    /// recurrences' `1/i` steps.
+    #[inline(always)]
+    fn div_u32(self, n: u32) -> Self {
+        self / Self::from_u32(n)
+    }
+    /// `self * n` for an integer `n`: the same value as `self * Self::from_u32(n)` on every
+    /// backend ([`Fixed22`]: two small integer products instead of a full product).
+    #[inline(always)]
+    fn mul_u32(self, n: u32) -> Self {
+        self * Self::from_u32(n)
+    }
     /// `self * self`.
     #[inline(always)]
     fn sq(self) -> Self {
@@ -378,9 +393,10 @@ impl_real_float!(
     libm::log,
     1.0e-150
 );
+// The hardware square root where the target has one (`hw`), else libm's: the same bits.
 impl_real_float!(
     f32,
-    libm::sqrtf,
+    hw::sqrtf,
     libm::atan2f,
     libm::sinf,
     libm::cosf,

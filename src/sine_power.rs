@@ -32,8 +32,7 @@ pub fn sine_power_integral<T: Real>(n: u32, x: T, sin_x: T, cos_x: T) -> T {
     };
     let mut i = start + 2;
     while i <= n {
-        let fi = T::from_u32(i);
-        s = (T::from_u32(i - 1) * s - g) / fi;
+        s = (s.mul_u32(i - 1) - g).div_u32(i);
         g *= sin_sq;
         i += 2;
     }
@@ -47,7 +46,7 @@ pub fn sine_power_integral_pi<T: Real>(n: u32) -> T {
     let (mut s, start) = if n & 1 == 1 { (T::TWO, 1) } else { (T::PI, 0) };
     let mut i = start + 2;
     while i <= n {
-        s = s * T::from_u32(i - 1) / T::from_u32(i);
+        s = s.mul_u32(i - 1).div_u32(i);
         i += 2;
     }
     s

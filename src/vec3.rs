@@ -108,8 +108,9 @@ impl<T: Real> Vec3<T> {
         if !self.is_finite() {
             return Err(Error::NotFinite(param));
         }
-        // Folds away for the float types (no limit).
-        if T::COORDINATE_LIMIT < f64::MAX && !(self.max_abs().to_f64() <= T::COORDINATE_LIMIT) {
+        // Folds away for the float types (no limit); compared in T, where the limit is exact
+        // (fixed point: no soft-float f64 per sample).
+        if T::COORDINATE_LIMIT < f64::MAX && !(self.max_abs() <= T::from_f64(T::COORDINATE_LIMIT)) {
             return Err(Error::OutOfRange(param));
         }
         Ok(self)

@@ -64,7 +64,11 @@ mod tests {
         for &a in &edge {
             for &b in &edge {
                 assert_eq!(mul_32(a, b), i64::from(a) * i64::from(b), "{a} {b}");
-                assert_eq!(mul_32_by_halves(a, b), i64::from(a) * i64::from(b), "{a} {b}");
+                assert_eq!(
+                    mul_32_by_halves(a, b),
+                    i64::from(a) * i64::from(b),
+                    "{a} {b}"
+                );
                 let (a, b) = (i64::from(a), i64::from(b));
                 assert_eq!(mul_64(a, b), a.wrapping_mul(b));
                 assert_eq!(mul_64(a << 20, b), (a << 20).wrapping_mul(b));

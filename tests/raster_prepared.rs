@@ -7,8 +7,8 @@
 use arealight::raster::edge::{Cull, EdgeTriangle, FixedPoint};
 use arealight::raster::{
     draw, encode_pixel, mesh, Affine, Band, Camera, DrawOptions, EncodeTable, Encoding, Lit,
-    Material, Mesh, PixelFormat, PreparedMesh, PreparedVertex, Projection, Rgb565, Rgb888,
-    Shading, Vertex, ENCODE_ENTRIES,
+    Material, Mesh, PixelFormat, PreparedMesh, PreparedVertex, Projection, Rgb565, Rgb888, Shading,
+    Vertex, ENCODE_ENTRIES,
 };
 use arealight::{Fixed22, PolygonLight, Real, Rgb, SphereLight, Vec3};
 
@@ -52,7 +52,8 @@ fn spans_are_exactly_the_covered_pixels() {
             2 => (40_000, -20_000),
             _ => (6, 0),
         };
-        let p = |rng: &mut Rng| FixedPoint::new(rng.range(off, off + span), rng.range(off, off + span));
+        let p =
+            |rng: &mut Rng| FixedPoint::new(rng.range(off, off + span), rng.range(off, off + span));
         let v = [p(&mut rng), p(&mut rng), p(&mut rng)];
         let Some(t) = EdgeTriangle::new(v, Cull::None) else {
             continue;
@@ -94,8 +95,14 @@ fn encoding_table_is_within_a_level_of_the_transfer_function() {
             let d888 = (i32::from(a.0[0]) - i32::from(b.0[0])).abs();
             worst = [worst[0].max(d565), worst[1].max(d888)];
         }
-        println!("{enc:?}: worst difference {} (RGB565 green), {} (RGB888)", worst[0], worst[1]);
-        assert!(worst[0] <= bound565 && worst[1] <= bound888, "{enc:?}: {worst:?}");
+        println!(
+            "{enc:?}: worst difference {} (RGB565 green), {} (RGB888)",
+            worst[0], worst[1]
+        );
+        assert!(
+            worst[0] <= bound565 && worst[1] <= bound888,
+            "{enc:?}: {worst:?}"
+        );
         // The ends are exact.
         let black: Rgb888 = table.pixel(0, 0, 0);
         let white: Rgb888 = table.pixel(4096, 4096, 4096);
@@ -112,16 +119,33 @@ fn levels_round_exactly_into_every_pixel_format() {
         let x = f64::from(level) / 65535.0;
         let q = |max: f64| (x * max + 0.5).floor() as u16;
         let p = Rgb565::from_levels(level, level, level);
-        assert_eq!((p.0 >> 11, p.0 >> 5 & 63, p.0 & 31), (q(31.0), q(63.0), q(31.0)), "{level}");
-        assert_eq!(Rgb888::from_levels(level, level, level).0[1] as u16, q(255.0), "{level}");
+        assert_eq!(
+            (p.0 >> 11, p.0 >> 5 & 63, p.0 & 31),
+            (q(31.0), q(63.0), q(31.0)),
+            "{level}"
+        );
+        assert_eq!(
+            Rgb888::from_levels(level, level, level).0[1] as u16,
+            q(255.0),
+            "{level}"
+        );
     }
 }
 
 /// The scene: a sphere and a torus lit by a polygon and a sphere light, one in Gouraud and one
 /// per pixel, and a floor that crosses the near plane and the guard band (clipped).
+/// A mesh of the scene: vertices, triangles, model transform, material, draw options.
+type SceneMesh<T> = (
+    Vec<Vertex<T>>,
+    Vec<[u16; 3]>,
+    Affine<T>,
+    Material<T>,
+    DrawOptions<T>,
+);
+
 struct Scene<T: Real> {
     camera: Camera<T>,
-    meshes: Vec<(Vec<Vertex<T>>, Vec<[u16; 3]>, Affine<T>, Material<T>, DrawOptions<T>)>,
+    meshes: Vec<SceneMesh<T>>,
     panel: PolygonLight<T, 4>,
     lamp: SphereLight<T>,
 }
@@ -171,7 +195,13 @@ fn scene<T: Real>(w: u16, h: u16, shading: [Shading; 3]) -> Scene<T> {
     Scene {
         camera,
         meshes: vec![
-            (sphere.0, sphere.1, Affine::translation(v(-0.6, 0.0, 0.0)).unwrap(), red, opts(shading[0])),
+            (
+                sphere.0,
+                sphere.1,
+                Affine::translation(v(-0.6, 0.0, 0.0)).unwrap(),
+                red,
+                opts(shading[0]),
+            ),
             (
                 torus.0,
                 torus.1,
@@ -181,7 +211,13 @@ fn scene<T: Real>(w: u16, h: u16, shading: [Shading; 3]) -> Scene<T> {
                 teal,
                 opts(shading[1]),
             ),
-            (floor.0, floor.1, Affine::translation(v(0.0, -0.75, 0.0)).unwrap(), grey, opts(shading[2])),
+            (
+                floor.0,
+                floor.1,
+                Affine::translation(v(0.0, -0.75, 0.0)).unwrap(),
+                grey,
+                opts(shading[2]),
+            ),
         ],
         panel: PolygonLight::new(&[
             v(-1.0, 2.0, -1.0),
@@ -199,8 +235,11 @@ fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>,
     let (w, h) = (s.camera.width(), s.camera.height());
     let lights: [&dyn arealight::Illuminant<T>; 2] = [&s.panel, &s.lamp];
     let table = EncodeTable::new::<T>(Encoding::Gamma2);
-    let mut storage: Vec<Vec<PreparedVertex<T>>> =
-        s.meshes.iter().map(|m| vec![PreparedVertex::EMPTY; m.0.len()]).collect();
+    let mut storage: Vec<Vec<PreparedVertex<T>>> = s
+        .meshes
+        .iter()
+        .map(|m| vec![PreparedVertex::EMPTY; m.0.len()])
+        .collect();
     let mut prepared: Vec<PreparedMesh<'_, '_, T>> = Vec::new();
     for (m, st) in s.meshes.iter().zip(storage.iter_mut()) {
         let mut p = PreparedMesh::new(Mesh::new(&m.0, &m.1).unwrap(), st).unwrap();
@@ -219,9 +258,19 @@ fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>,
         for (i, m) in s.meshes.iter().enumerate() {
             let lit = Lit::new(&lights, &m.3);
             if use_prepared {
-                prepared[i].draw(&s.camera, &mut band, &lit, &m.4, &table).unwrap();
+                prepared[i]
+                    .draw(&s.camera, &mut band, &lit, &m.4, &table)
+                    .unwrap();
             } else {
-                draw(&s.camera, &mut band, &Mesh::new(&m.0, &m.1).unwrap(), &m.2, &lit, &m.4).unwrap();
+                draw(
+                    &s.camera,
+                    &mut band,
+                    &Mesh::new(&m.0, &m.1).unwrap(),
+                    &m.2,
+                    &lit,
+                    &m.4,
+                )
+                .unwrap();
             }
         }
         let keep = (w as usize * (h - y0).min(rows) as usize).min(n);
@@ -233,13 +282,21 @@ fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>,
 }
 
 fn channels(p: Rgb565) -> [i32; 3] {
-    [(p.0 >> 11) as i32, (p.0 >> 5 & 63) as i32, (p.0 & 31) as i32]
+    [
+        (p.0 >> 11) as i32,
+        (p.0 >> 5 & 63) as i32,
+        (p.0 & 31) as i32,
+    ]
 }
 
 #[test]
 fn prepared_bands_equal_the_full_frame() {
     fn check<T: Real>() {
-        let s = scene::<T>(96, 80, [Shading::Gouraud, Shading::PerPixel, Shading::Gouraud]);
+        let s = scene::<T>(
+            96,
+            80,
+            [Shading::Gouraud, Shading::PerPixel, Shading::Gouraud],
+        );
         let full = render(&s, 80, true);
         assert!(full.1.iter().filter(|&&d| d != u16::MAX).count() > 96 * 80 / 3);
         for rows in [1, 7, 16] {
@@ -266,12 +323,23 @@ fn prepared_frames_cover_drawn_pixels_with_close_colours() {
                 let drawn = *dp != u16::MAX;
                 assert_eq!(drawn, *dq != u16::MAX, "{name}: coverage differs");
                 covered += usize::from(drawn);
-                let d = channels(*p).iter().zip(channels(*q)).map(|(x, y)| (x - y).abs()).max().unwrap();
+                let d = channels(*p)
+                    .iter()
+                    .zip(channels(*q))
+                    .map(|(x, y)| (x - y).abs())
+                    .max()
+                    .unwrap();
                 worst = worst.max(d);
             }
-            println!("{name} {shading:?}: {covered} pixels, worst channel difference {worst} levels");
+            println!(
+                "{name} {shading:?}: {covered} pixels, worst channel difference {worst} levels"
+            );
             assert!(covered > 1000);
-            let bound = if shading == Shading::Gouraud { max_gouraud } else { max_per_pixel };
+            let bound = if shading == Shading::Gouraud {
+                max_gouraud
+            } else {
+                max_per_pixel
+            };
             assert!(worst <= bound, "{name} {shading:?}: {worst} > {bound}");
         }
     }

@@ -7,7 +7,10 @@
 //!   here from the numbers the firmware prints;
 //! - every model id x backend x input is present, and every value is within the accuracy
 //!   target of the f64 reference computed here from the same (rounded) inputs;
-//! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model).
+//! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model);
+//! - the board demo's vertex shade (`D` lines: `Lit::shade` with the demo's lights and
+//!   materials, `Fixed22` on the M0, f32 on the M4F) is within the backend's target of f64,
+//!   scaled by the colour weights the model values are multiplied by.
 //!
 //! It prints the instructions per call (min, median, max over the inputs) and the code size of
 //! each model per target, and writes them to `target/qemu-budget/counts.csv`, which
@@ -19,6 +22,9 @@
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/cases.rs"]
 mod cases;
+#[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/demo_shade.rs"]
+mod demo_shade;
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/points.rs"]
 mod points;
@@ -46,6 +52,14 @@ struct HostBackend {
     tolerance: fn(&str) -> f64,
     /// The same backend evaluated on the host (for the bit-identity report).
     host: fn(model: usize) -> Vec<Sample>,
+    /// The demo shade evaluated on the host in the same backend: (case, input, colour).
+    demo: fn() -> Vec<(usize, usize, [f64; 3])>,
+}
+
+fn demo_host<T: Real>() -> Vec<(usize, usize, [f64; 3])> {
+    let mut v = Vec::new();
+    let _ = demo_shade::run::<T, _>(|x| x, &mut Plain, &mut |c, i, val, _| v.push((c, i, val)));
+    v
 }
 
 fn round_f32(x: f64) -> f64 {
@@ -92,6 +106,7 @@ fn backends() -> Vec<HostBackend> {
             round: round_f32,
             tolerance: tol_f32,
             host: host_eval::<f32>,
+            demo: demo_host::<f32>,
         },
         HostBackend {
             name: "f32-fast",
@@ -100,6 +115,7 @@ fn backends() -> Vec<HostBackend> {
             round: round_f32,
             tolerance: tol_fast,
             host: host_eval::<Fast32>,
+            demo: demo_host::<Fast32>,
         },
         HostBackend {
             name: "fixed",
@@ -108,6 +124,7 @@ fn backends() -> Vec<HostBackend> {
             round: round_fixed,
             tolerance: tol_fast,
             host: host_eval::<Fixed22>,
+            demo: demo_host::<Fixed22>,
         },
     ]
 }
@@ -545,6 +562,115 @@ fn check_scene(short: &str, out: &str, failures: &mut Vec<String>) {
     }
 }
 
+/// The `D` lines (one demo vertex shade per call): every case and input present, each channel
+/// within the backend's model target times [`demo_shade::weight`] of the f64 reference
+/// evaluated here from the same rounded inputs.
+fn check_demo_shade(
+    short: &str,
+    out: &str,
+    rows: &mut BTreeMap<(String, String, usize), Row>,
+    failures: &mut Vec<String>,
+) {
+    for b in backends() {
+        let mut got: HashMap<(String, usize), (u32, Vec<f64>)> = HashMap::new();
+        for l in out.lines() {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            if f.len() == 8 && f[0] == "D" && f[1] == b.name {
+                let (Ok(i), Ok(n)) = (f[3].parse::<usize>(), f[4].parse::<u32>()) else {
+                    failures.push(format!("{short}: bad D line {l}"));
+                    continue;
+                };
+                let v: Vec<f64> = f[5..]
+                    .iter()
+                    .filter_map(|h| u64::from_str_radix(h, 16).ok().map(f64::from_bits))
+                    .collect();
+                got.insert((f[2].to_owned(), i), (n, v));
+            }
+        }
+        if got.is_empty() {
+            continue;
+        }
+        let mut reference = Vec::new();
+        let ok = demo_shade::run::<f64, _>(b.round, &mut Plain, &mut |case, i, c, _| {
+            reference.push((case, i, c))
+        });
+        if ok.is_none() {
+            failures.push(format!("{short}: the f64 demo shade refused its setup"));
+            continue;
+        }
+        let same = (b.demo)();
+        for (case, i, want) in reference {
+            let (name, m) = demo_shade::CASES[case];
+            let row = rows
+                .entry((short.to_owned(), b.name.to_owned(), DEMO_ROW + case))
+                .or_default();
+            let Some((count, v)) = got.get(&(name.to_owned(), i)) else {
+                failures.push(format!("{short} {} {name}: input {i} missing", b.name));
+                continue;
+            };
+            row.insns.push(*count);
+            if same
+                .iter()
+                .any(|&(c, j, h)| c == case && j == i && h[..] == v[..])
+            {
+                row.bit_identical += 1;
+            }
+            // The models' target, scaled by the colour weights; f32's Phong part grows as m.
+            let model_tol = if b.name == "f32" {
+                2e-6 + f64::from(m) * 2f64.powi(-24)
+            } else {
+                (b.tolerance)("demo")
+            };
+            let tol = model_tol * demo_shade::weight(case);
+            for (c, (&v, &w)) in v.iter().zip(&want).enumerate() {
+                let err = (v - w).abs() / w.abs().max(1.0);
+                row.max_err = row.max_err.max(err);
+                if err.is_nan() || err > tol {
+                    failures.push(format!(
+                        "{short} {} {name} input {i} channel {c}: {v:e} on target, {w:e} in f64: \
+                         error {err:.2e} > {tol:.2e}",
+                        b.name
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// The `Q` line of the M4F: the hardware square root (`VSQRT.F32`, what `<f32 as Real>::sqrt`
+/// is there) must be in use and equal `libm::sqrtf` on every pattern of the sweep.
+fn check_sqrt(short: &str, out: &str, failures: &mut Vec<String>) {
+    let line = out.lines().find(|l| l.starts_with("Q sqrt_f32 "));
+    let Some(l) = line else {
+        if short == "m4f" {
+            failures.push(format!(
+                "{short}: no Q line (the square-root sweep did not run)"
+            ));
+        }
+        return;
+    };
+    let f: Vec<u64> = l
+        .split_whitespace()
+        .skip(2)
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    if let [hw, checked, mismatches, insns_hw, insns_libm] = f[..] {
+        println!(
+            "{short}: <f32 as Real>::sqrt is {} : {mismatches} mismatches with libm::sqrtf over \
+             {checked} bit patterns; one call {insns_hw} instructions (libm::sqrtf {insns_libm})",
+            if hw == 1 { "VSQRT.F32" } else { "libm::sqrtf" }
+        );
+        if hw != 1 || mismatches != 0 || checked < 500_000 {
+            failures.push(format!("{short}: square-root sweep failed: {l}"));
+        }
+    } else {
+        failures.push(format!("{short}: bad Q line {l}"));
+    }
+}
+
+/// Row index of the first demo-shade case (after the models and the alternatives).
+const DEMO_ROW: usize = MODELS.len() + points::ALTERNATIVES.len();
+
 #[allow(clippy::too_many_arguments)]
 fn check_target(
     triple: &str,
@@ -622,14 +748,32 @@ fn check_target(
     }
     check_points(short, &lines, &sizes, rows, &mut failures);
     check_scene(short, &out, &mut failures);
+    check_demo_shade(short, &out, rows, &mut failures);
+    check_sqrt(short, &out, &mut failures);
+    if !out.lines().any(|l| l.starts_with("D ")) {
+        failures.push(format!("{short}: no D lines (the demo shade did not run)"));
+    }
     if let Some(m) = functional {
         let out2 = qemu(m, &elf)?;
         let (lines2, _) = parse(&out2)?;
+        // The D lines too, without their counts (0 there).
+        let shades = |o: &str| -> Vec<String> {
+            o.lines()
+                .filter(|l| l.starts_with("D "))
+                .map(|l| {
+                    let f: Vec<&str> = l.split_whitespace().collect();
+                    format!("{} {}", f[..4].join(" "), f[5..].join(" "))
+                })
+                .collect()
+        };
+        let (d1, d2) = (shades(&out), shades(&out2));
         let differ = lines
             .iter()
             .zip(&lines2)
             .filter(|(a, b)| a.value != b.value || a.model != b.model || a.backend != b.backend)
-            .count();
+            .count()
+            + d1.iter().zip(&d2).filter(|(a, b)| a != b).count()
+            + d1.len().abs_diff(d2.len());
         if lines.len() != lines2.len() || differ > 0 {
             failures.push(format!(
                 "{short}: on {m} the same image gave {} lines, {differ} with other values than on {machine}",
@@ -725,6 +869,7 @@ fn row_name(index: usize) -> &'static str {
         .get(index)
         .copied()
         .or_else(|| points::ALTERNATIVES.get(index - MODELS.len()).map(|a| a.0))
+        .or_else(|| demo_shade::CASES.get(index - DEMO_ROW).map(|c| c.0))
         .unwrap_or("?")
 }
 

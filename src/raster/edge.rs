@@ -336,7 +336,9 @@ impl EdgeTriangle {
 
 /// The integers edge functions are stepped in: `i32` for triangles of display size, `i64`
 /// beyond.
-trait EdgeInt: Copy + PartialOrd + core::ops::Add<Output = Self> + core::ops::BitOr<Output = Self> {
+trait EdgeInt:
+    Copy + PartialOrd + core::ops::Add<Output = Self> + core::ops::BitOr<Output = Self>
+{
     /// From an `i64` known to fit.
     fn from_i64(x: i64) -> Self;
 }

@@ -86,8 +86,8 @@ pub mod target;
 
 pub use edge::{Cull, EdgeTriangle, FixedPoint};
 pub use mesh::MeshCounts;
-pub use shade::{reflect, Lit, Material, Shader, Shading};
 pub use prepared::{PreparedMesh, PreparedVertex, VertexColour};
+pub use shade::{reflect, Lit, Material, Shader, Shading};
 pub use target::{
     encode_pixel, Band, EncodeTable, Encoding, PixelFormat, Rgb565, Rgb888, DEPTH_FAR,
     ENCODE_ENTRIES, ENCODE_INDEX_BITS,

@@ -502,7 +502,11 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         let mut poly = [cv[0]; MAX_CLIPPED];
         let count = clip_polygon(cv, camera.near, camera.far, &mut poly);
         let range = camera.far - camera.near;
-        let (a, b, inv_range) = (camera.far / range, camera.far * camera.near / range, T::ONE / range);
+        let (a, b, inv_range) = (
+            camera.far / range,
+            camera.far * camera.near / range,
+            T::ONE / range,
+        );
         let mut sv = [ScreenVertex::<T>::EMPTY; MAX_CLIPPED];
         for (s, cv) in sv.iter_mut().zip(&poly[..count]) {
             if !(cv.c[3] > T::ZERO) {
@@ -567,7 +571,11 @@ fn project<T: Real>(
 /// to `[0, COLOUR_MAX]`.
 #[inline]
 fn colour_bits<T: Real>(c: Rgb<T>, exposure: T) -> [i32; 3] {
-    [c.r, c.g, c.b].map(|x| (x * exposure).to_fixed_i32(COLOUR_FRAC).clamp(0, COLOUR_MAX))
+    [c.r, c.g, c.b].map(|x| {
+        (x * exposure)
+            .to_fixed_i32(COLOUR_FRAC)
+            .clamp(0, COLOUR_MAX)
+    })
 }
 
 /// What a triangle's scan conversion needs of a vertex.
@@ -630,13 +638,9 @@ impl Plane {
     /// 32 x 32 -> 64-bit products.
     #[inline]
     fn new(a: [i32; 3], geo: &Geometry) -> Self {
-        let (da1, da2) = (
-            a[1] as i64 - a[0] as i64,
-            a[2] as i64 - a[0] as i64,
-        );
-        let mix = |l1: i64, l2: i64| {
-            (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32
-        };
+        let (da1, da2) = (a[1] as i64 - a[0] as i64, a[2] as i64 - a[0] as i64);
+        let mix =
+            |l1: i64, l2: i64| (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32;
         let sx = mix(geo.l1.0, geo.l2.0);
         let at_b = a[0].wrapping_add(mix(geo.l1.2, geo.l2.2));
         Plane {
@@ -682,8 +686,8 @@ impl Geometry {
         let sh = n.saturating_sub(33);
         let nn = n - sh; // <= 33
         let r = ((1u64 << (nn + 30)) / (d >> sh)) as i64; // in (2^29, 2^31]
-        // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
-        // BARY_FRAC - n - 30).
+                                                          // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
+                                                          // BARY_FRAC - n - 30).
         let k = n + 30;
         let scale = |x: i64| {
             let p = mul_64(x, r);
@@ -697,13 +701,7 @@ impl Geometry {
         // The anchor's offset from vertex 0, in sub-pixels (the weights are per pixel: / 16).
         let dx = (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as i64;
         let dy = (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as i64;
-        let plane = |gx: i64, gy: i64| {
-            (
-                gx,
-                gy,
-                (mul_64(gx, dx).wrapping_add(mul_64(gy, dy))) >> 4,
-            )
-        };
+        let plane = |gx: i64, gy: i64| (gx, gy, (mul_64(gx, dx).wrapping_add(mul_64(gy, dy))) >> 4);
         Geometry {
             l1: plane(scale(f2), scale(-e2)),
             l2: plane(scale(-f1), scale(e1)),
@@ -745,8 +743,9 @@ fn raster<T, P, S>(
     let (row0, row1) = (ctx.row0, ctx.row1);
     match opts.shading {
         Shading::Gouraud => {
-            let planes: [Plane; 3] =
-                core::array::from_fn(|k| Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo));
+            let planes: [Plane; 3] = core::array::from_fn(|k| {
+                Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo)
+            });
             let table = ctx.table;
             let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
             // (Stepping the four attributes by additions instead of `row + x sx` per pixel,

@@ -386,8 +386,10 @@ impl<'a, T: Real> Demo<'a, T> {
     pub fn import_colours(&mut self, exchange: &ColourExchange, core: usize, cores: usize) {
         let cores = cores.max(1);
         let theirs = |i: usize| i % cores == core;
-        self.sphere.set_colours(exchange.sphere.iter().copied(), theirs);
-        self.torus.set_colours(exchange.torus.iter().copied(), theirs);
+        self.sphere
+            .set_colours(exchange.sphere.iter().copied(), theirs);
+        self.torus
+            .set_colours(exchange.torus.iter().copied(), theirs);
         self.lamp.set_colours(exchange.lamp.iter().copied(), theirs);
     }
 

@@ -20,16 +20,37 @@
 //! S <backend> <16_prepared|2_lights> <instructions> <frame checksum>
 //! ```
 //!
+//! then one vertex shade of the board demo per call ([`demo_shade`]: the demo's lights and
+//! materials through `Lit::shade`; `Fixed22` on the M0, f32 on the M4F, what the boards run),
+//!
+//! ```text
+//! D <backend> <case> <input> <instructions> <r g b bits as hex>
+//! ```
+//!
+//! and, on the M4F, the hardware square root (`VSQRT.F32`, which `<f32 as Real>::sqrt` uses
+//! there: `arealight::real::hw`) against `libm::sqrtf` over a strided sweep of the positive
+//! bit patterns, with the instructions of one call of each,
+//!
+//! ```text
+//! Q sqrt_f32 <hardware 0|1> <patterns checked> <mismatches> <insns Real::sqrt> <insns libm::sqrtf>
+//! ```
+//!
 //! plus an `INFO` line, a `SELF` line (the counter self-check) and a final `DONE`.
+//!
+//! For profiling, a build with the environment variable `QEMU_BUDGET_ONLY` set to a
+//! comma-separated list of model ids (or `demo_shade`) runs only those cases (no alternatives,
+//! no scene); the budget never sets it.
+//!
 //! `host-sim/tests/qemu_budget.rs` builds it, runs it and checks every line.
 //!
 //! # How instructions are counted
 //!
 //! Under `-icount shift=0,align=off,sleep=off` QEMU advances its virtual clock by exactly 1 ns
 //! per executed instruction, and the netduinoplus2 machine (STM32F405) clocks TIM2 at 1 GHz of
-//! that clock: TIM2_CNT advances by one per instruction. Before trusting it, [`self_check`]
-//! times, entirely in assembly, `subs`/`bne` loops of n = 1, 10, 1000, 3000 iterations between
-//! two TIM2_CNT loads and fails unless each reads exactly 2n more than the two loads alone.
+//! that clock: TIM2_CNT advances by one per instruction. Before trusting it,
+//! [`counter::self_check`] times, entirely in assembly, `subs`/`bne` loops of n = 1, 10, 1000,
+//! 3000 iterations between two TIM2_CNT loads and fails unless each reads exactly 2n more than
+//! the two loads alone. (The counter lives in `counter.rs`, shared with `boards/qemu-frame`.)
 //!
 //! A call is counted as the difference of two TIM2_CNT reads around it, less the same
 //! difference around nothing: every instruction executed from the first read to the second,
@@ -43,19 +64,21 @@
 #![no_main]
 
 mod cases;
+mod counter;
+mod demo_shade;
 mod points;
 mod scene_cost;
 
 use core::fmt::Write;
 use core::hint::black_box;
-use core::ptr::{read_volatile, write_volatile};
-use core::sync::atomic::{compiler_fence, Ordering::SeqCst};
+use core::ptr::read_volatile;
 
 use arealight::{Fast32, Real};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::debug;
 
 use cases::{Dirs, Lights, Meter, Sample, MODELS, RING};
+use counter::{fail, self_check, Line, Tim2};
 
 /// The backends this target runs (each names itself: [`cases::Backend::NAME`]). Adding a
 /// backend is one entry here (and, on the host, one in `host-sim/tests/qemu_budget.rs`).
@@ -69,101 +92,7 @@ macro_rules! for_each_backend {
     };
 }
 
-const TIM2: usize = 0x4000_0000;
-const TIM_CR1: usize = TIM2;
-const TIM_EGR: usize = TIM2 + 0x14;
-const TIM_CNT: usize = TIM2 + 0x24;
-const TIM_PSC: usize = TIM2 + 0x28;
-const TIM_ARR: usize = TIM2 + 0x2C;
-const RCC_APB1ENR: usize = 0x4002_3840;
 const CPUID: usize = 0xE000_ED00;
-
-/// A line of output, sent over semihosting when complete.
-struct Line {
-    buf: [u8; 160],
-    len: usize,
-}
-
-impl Line {
-    const fn new() -> Self {
-        Line {
-            buf: [0; 160],
-            len: 0,
-        }
-    }
-    fn send(&mut self) {
-        let _ = self.write_str("\n");
-        if let Ok(mut out) = cortex_m_semihosting::hio::hstdout() {
-            let _ = out.write_all(&self.buf[..self.len]);
-        }
-        self.len = 0;
-    }
-}
-
-impl Write for Line {
-    fn write_str(&mut self, s: &str) -> core::fmt::Result {
-        let b = s.as_bytes();
-        let end = self.len + b.len();
-        if end > self.buf.len() {
-            return Err(core::fmt::Error);
-        }
-        self.buf[self.len..end].copy_from_slice(b);
-        self.len = end;
-        Ok(())
-    }
-}
-
-fn fail(line: &mut Line, why: core::fmt::Arguments) -> ! {
-    let _ = write!(line, "FAIL {why}");
-    line.send();
-    debug::exit(debug::EXIT_FAILURE);
-    loop {
-        cortex_m::asm::wfi();
-    }
-}
-
-#[inline(always)]
-fn cnt() -> u32 {
-    // SAFETY: TIM2_CNT is a readable 32-bit register of the STM32F405 (netduinoplus2).
-    unsafe { read_volatile(TIM_CNT as *const u32) }
-}
-
-/// TIM2 as an instruction counter (netduinoplus2 under `-icount shift=0`).
-struct Tim2 {
-    /// The count of an empty measured region.
-    empty: u32,
-}
-
-impl Tim2 {
-    fn start() -> Self {
-        // SAFETY: STM32F405 register writes: TIM2 clock on, prescaler 1, full 32-bit period,
-        // update event to load them, counter on.
-        unsafe {
-            let en = read_volatile(RCC_APB1ENR as *const u32);
-            write_volatile(RCC_APB1ENR as *mut u32, en | 1);
-            write_volatile(TIM_PSC as *mut u32, 0);
-            write_volatile(TIM_ARR as *mut u32, u32::MAX);
-            write_volatile(TIM_EGR as *mut u32, 1);
-            write_volatile(TIM_CR1 as *mut u32, 1);
-        }
-        let mut t = Tim2 { empty: 0 };
-        t.empty = t.raw(|| ()).1;
-        t
-    }
-
-    /// The raw TIM2 difference around `f`.
-    #[inline(always)]
-    fn raw<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
-        compiler_fence(SeqCst);
-        let t0 = cnt();
-        compiler_fence(SeqCst);
-        let r = black_box(f());
-        compiler_fence(SeqCst);
-        let t1 = cnt();
-        compiler_fence(SeqCst);
-        (r, t1.wrapping_sub(t0))
-    }
-}
 
 impl Meter for Tim2 {
     #[inline(always)]
@@ -180,72 +109,6 @@ impl Meter for Uncounted {
     #[inline(always)]
     fn call<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
         (black_box(f()), 0)
-    }
-}
-
-/// TIM2 around `n` iterations of `subs`/`bne` (2n instructions), all in assembly so that the
-/// compiler adds nothing: `ldr` (count), the loop, `ldr` (count). `n` = 0 times the two loads
-/// alone (no loop).
-fn timed_loop(n: u32) -> u32 {
-    let (t0, t1): (u32, u32);
-    if n == 0 {
-        // SAFETY: two loads of TIM2_CNT (a readable register), nothing else.
-        unsafe {
-            core::arch::asm!(
-                "ldr r2, [r1]",
-                "ldr r3, [r1]",
-                in("r1") TIM_CNT,
-                out("r2") t0,
-                out("r3") t1,
-                options(nostack, readonly),
-            );
-        }
-    } else {
-        // SAFETY: loads of TIM2_CNT around a register-only countdown loop; r0 is clobbered.
-        unsafe {
-            core::arch::asm!(
-                "ldr r2, [r1]",
-                "2:",
-                "subs r0, #1",
-                "bne 2b",
-                "ldr r3, [r1]",
-                inout("r0") n => _,
-                in("r1") TIM_CNT,
-                out("r2") t0,
-                out("r3") t1,
-                options(nostack, readonly),
-            );
-        }
-    }
-    t1.wrapping_sub(t0)
-}
-
-/// The loop lengths of the self-check.
-const SELF_N: [u32; 4] = [1, 10, 1000, 3000];
-
-/// Checks that TIM2 counts executed instructions exactly: a loop of n `subs`/`bne` iterations
-/// must read exactly 2n more than the two loads alone, for every n of [`SELF_N`], and every
-/// measurement must repeat exactly.
-fn self_check(t: &Tim2, line: &mut Line) {
-    let base = timed_loop(0);
-    let _ = write!(line, "SELF empty={} base={base}", t.empty);
-    let mut ok = base > 0 && base <= 2 && timed_loop(0) == base;
-    for n in SELF_N {
-        let c = timed_loop(black_box(n));
-        let again = timed_loop(black_box(n));
-        let _ = write!(line, " n{n}={c}");
-        ok &= c == base + 2 * n && again == c;
-    }
-    line.send();
-    if !ok {
-        fail(
-            line,
-            format_args!(
-                "counter self-check: a loop of n subs/bne iterations did not read exactly 2n + \
-                 {base} on TIM2 (see the SELF line); TIM2 does not count executed instructions \
-                 exactly on this QEMU"
-            ),
-        );
     }
 }
 
@@ -311,7 +174,7 @@ fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
         get: &ring,
     };
     for (model, id) in MODELS.iter().enumerate() {
-        if !cases::supports(name, id) {
+        if !cases::supports(name, id) || !selected(id) {
             continue;
         }
         let mut out = Line::new();
@@ -319,6 +182,68 @@ fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
             emit(&mut out, name, &s)
         });
     }
+}
+
+/// The profiling filter (see the module docs): `None` runs everything.
+const ONLY: Option<&str> = option_env!("QEMU_BUDGET_ONLY");
+
+/// Whether case `id` runs under the profiling filter.
+fn selected(id: &str) -> bool {
+    match ONLY {
+        None => true,
+        Some(list) => list.split(',').any(|x| x == id),
+    }
+}
+
+/// The `D` lines of [`demo_shade`] for one backend.
+#[inline(never)]
+fn run_demo_shade<T: Real, M: Meter>(name: &str, meter: &mut M) {
+    if !selected("demo_shade") {
+        return;
+    }
+    let mut line = Line::new();
+    let done = demo_shade::run::<T, M>(|x| x, meter, &mut |case, i, c, count| {
+        let _ = write!(line, "D {name} {} {i} {count}", demo_shade::CASES[case].0);
+        for v in c {
+            let _ = write!(line, " {:016x}", v.to_bits());
+        }
+        line.send();
+    });
+    if done.is_none() {
+        fail(
+            &mut line,
+            format_args!("{name}: the demo shade refused its setup"),
+        );
+    }
+}
+
+/// The `Q` line: `<f32 as Real>::sqrt` (the hardware `VSQRT.F32` on the M4F) against
+/// `libm::sqrtf` on every 4099th bit pattern of the positive floats and infinity (subnormals,
+/// normals, the largest values), and one counted call of each. The M4F only (the M0 has no
+/// hardware square root).
+#[cfg(target_abi = "eabihf")]
+#[inline(never)]
+fn run_sqrt_sweep<M: Meter>(meter: &mut M) {
+    let (mut checked, mut mismatches) = (0u32, 0u32);
+    let mut bits = 1u32;
+    while bits <= 0x7F80_0000 {
+        let x = f32::from_bits(black_box(bits));
+        if <f32 as Real>::sqrt(x).to_bits() != libm::sqrtf(x).to_bits() {
+            mismatches += 1;
+        }
+        checked += 1;
+        bits += 4099;
+    }
+    let x = black_box(2.0f32);
+    let (_, hw) = meter.call(|| <f32 as Real>::sqrt(black_box(x)));
+    let (_, sw) = meter.call(|| libm::sqrtf(black_box(x)));
+    let mut line = Line::new();
+    let _ = write!(
+        line,
+        "Q sqrt_f32 {} {checked} {mismatches} {hw} {sw}",
+        u8::from(arealight::real::hw::HARDWARE_SQRT_F32)
+    );
+    line.send();
 }
 
 /// The `S` lines of [`scene_cost`] for one backend.
@@ -368,13 +293,21 @@ fn main() -> ! {
             };
         }
         for_each_backend!(run);
-        run_points::<f32, _>("f32", &mut t);
         // One backend per core (the M0 image must fit the micro:bit's 256 KB): the float path
-        // on the M4F, fixed point on the M0.
+        // on the M4F, fixed point on the M0, as the boards run them.
         #[cfg(target_abi = "eabihf")]
-        run_scene::<f32, _>("f32", &mut t);
+        run_demo_shade::<f32, _>("f32", &mut t);
         #[cfg(not(target_abi = "eabihf"))]
-        run_scene::<arealight::Fixed22, _>("fixed", &mut t);
+        run_demo_shade::<arealight::Fixed22, _>("fixed", &mut t);
+        if ONLY.is_none() {
+            run_points::<f32, _>("f32", &mut t);
+            #[cfg(target_abi = "eabihf")]
+            run_sqrt_sweep(&mut t);
+            #[cfg(target_abi = "eabihf")]
+            run_scene::<f32, _>("f32", &mut t);
+            #[cfg(not(target_abi = "eabihf"))]
+            run_scene::<arealight::Fixed22, _>("fixed", &mut t);
+        }
     } else {
         let mut m = Uncounted;
         macro_rules! run {
@@ -383,7 +316,13 @@ fn main() -> ! {
             };
         }
         for_each_backend!(run);
-        run_points::<f32, _>("f32", &mut m);
+        #[cfg(target_abi = "eabihf")]
+        run_demo_shade::<f32, _>("f32", &mut m);
+        #[cfg(not(target_abi = "eabihf"))]
+        run_demo_shade::<arealight::Fixed22, _>("fixed", &mut m);
+        if ONLY.is_none() {
+            run_points::<f32, _>("f32", &mut m);
+        }
     }
     let _ = write!(line, "DONE");
     line.send();

@@ -19,13 +19,11 @@ use panic_probe as _;
 use arealight::raster::{Band, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
-use static_cell::ConstStaticCell;
 use demo_scene::{Demo, MeshBuffers, Stage, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 use embedded_hal::digital::OutputPin;
-use hal::dma::DMAExt;
-use rp2040_st7789::{BandSender, DmaBuffer};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock;
+use hal::dma::DMAExt;
 use hal::fugit::RateExtU32;
 use hal::pac;
 use mipidsi::interface::SpiInterface;
@@ -33,6 +31,8 @@ use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use mipidsi::Builder;
 use rp2040_hal as hal;
+use rp2040_st7789::{BandSender, DmaBuffer};
+use static_cell::ConstStaticCell;
 
 /// The second-stage bootloader. The RP2040's boot ROM copies the first 256 bytes of flash to
 /// SRAM and runs them; this code (for the Pico's W25Q16JV flash, which the W25Q080 loader

@@ -33,16 +33,15 @@ use core::cell::RefCell;
 use arealight::raster::{Band, DrawStats, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
-use static_cell::ConstStaticCell;
 use critical_section::Mutex;
 use demo_scene::{
-    ColourExchange, Demo, Frame, MeshBuffers, BACKGROUND, BAND_PIXELS, BAND_ROWS, HEIGHT, PERIOD, WIDTH,
+    ColourExchange, Demo, Frame, MeshBuffers, BACKGROUND, BAND_PIXELS, BAND_ROWS, HEIGHT, PERIOD,
+    WIDTH,
 };
 use embedded_hal::digital::OutputPin;
-use hal::dma::DMAExt;
-use rp2040_st7789::{BandSender, DmaBuffer};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock;
+use hal::dma::DMAExt;
 use hal::fugit::RateExtU32;
 use hal::multicore::{Multicore, Stack};
 use hal::pac;
@@ -51,6 +50,8 @@ use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
 use mipidsi::Builder;
 use rp2040_hal as hal;
+use rp2040_st7789::{BandSender, DmaBuffer};
+use static_cell::ConstStaticCell;
 
 /// The second-stage bootloader (see `lit_scene.rs`).
 #[allow(unsafe_code)]
@@ -256,9 +257,7 @@ fn run() -> ! {
     let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
     let cores = multicore.cores();
     cores[1]
-        .spawn(CORE1_STACK.take().unwrap(), move || {
-            core1(core1_buffers)
-        })
+        .spawn(CORE1_STACK.take().unwrap(), move || core1(core1_buffers))
         .unwrap();
 
     // 10. Core 0's own scene and band, as in `lit_scene.rs`.

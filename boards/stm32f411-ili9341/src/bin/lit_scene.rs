@@ -20,7 +20,6 @@ use panic_probe as _;
 use arealight::raster::{Band, Rgb565, Shading};
 use cortex_m::peripheral::DWT;
 use cortex_m::singleton;
-use static_cell::ConstStaticCell;
 use cortex_m_rt::entry;
 use demo_scene::{Demo, MeshBuffers, Stage, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 use embedded_graphics_core::pixelcolor::Rgb565 as EgRgb565;
@@ -30,6 +29,7 @@ use mipidsi::interface::SpiInterface;
 use mipidsi::models::ILI9341Rgb565;
 use mipidsi::options::ColorOrder;
 use mipidsi::Builder;
+use static_cell::ConstStaticCell;
 use stm32f4xx_hal::spi::{Mode, Phase, Polarity, SpiExt};
 use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 

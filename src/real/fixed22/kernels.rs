@@ -1,0 +1,491 @@
+//! The elementary kernels of [`Fixed22`](super::Fixed22) in `i32`/`u32` integer arithmetic:
+//! the product, divisions, square roots, arc tangent, sine/cosine, exp and ln (the module docs
+//! of `fixed22` tabulate their bounds and costs).
+
+use super::FRAC;
+
+/// `a * b` in Q22, rounded down (exactly `floor(a b / 2^22)`), saturated.
+///
+/// ARMv6-M (Cortex-M0) has only a 32 x 32 -> 32-bit `MULS`, and the compiler's `i64` product is a
+/// call to the 64 x 64-bit `__aeabi_lmul`. Here: four 16 x 16-bit partial products, combined in
+/// 32-bit integers only (no 64-bit adds or shifts), and one range test of the high part instead
+/// of a 64-bit clamp; the 64-bit arithmetic is left to the (cold) saturating case. With
+/// `a = ah 2^16 + al`, `b = bh 2^16 + bl` (`al`, `bl` in [0, 2^16)):
+/// `a b = H 2^32 + w 2^16 + (al bl mod 2^16)` with `H = ah bh + (ah bl >> 16) + (al bh >> 16)`
+/// and `w = (ah bl mod 2^16) + (al bh mod 2^16) + (al bl >> 16) < 3 2^16`, so
+/// `floor(a b / 2^22) = H 2^10 + floor(w / 2^6)`. Measured on the M0: 40 -> 27 instructions
+/// per product (in the QEMU harness).
+#[inline(always)]
+pub(super) fn mul_bits(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah|, |bh| <= 2^15 and al, bl < 2^16: every partial product fits its type.
+    let hh = ah * bh;
+    let m1 = ah * bl;
+    let m2 = al * bh;
+    let ll = (al as u32) * (bl as u32);
+    let h = hh + (m1 >> 16) + (m2 >> 16);
+    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16);
+    // H in [-2^21, 2^21 - 3]: H 2^10 + w/2^6 (< 3 2^10) fits an i32.
+    if (h.wrapping_add(1 << 21) as u32) <= (1 << 22) - 3 {
+        (h << 10) + (w >> 6) as i32
+    } else {
+        mul_saturated(h, w)
+    }
+}
+
+/// The saturating end of [`mul_bits`]: `H 2^10 + w/2^6` clamped to the `i32` range.
+#[cold]
+#[inline(never)]
+pub(super) fn mul_saturated(h: i32, w: u32) -> i32 {
+    let p = (i64::from(h) << 10) + i64::from(w >> 6);
+    p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+}
+
+/// The leading zeros of `x > 0` (ARMv6-M has no `CLZ`; `u32::leading_zeros` is a call to
+/// `__clzsi2`): a five-step binary search, about 15 instructions.
+#[inline(always)]
+pub(super) fn clz(mut x: u32) -> u32 {
+    let mut n = 0;
+    if x < 1 << 16 {
+        n += 16;
+        x <<= 16;
+    }
+    if x < 1 << 24 {
+        n += 8;
+        x <<= 8;
+    }
+    if x < 1 << 28 {
+        n += 4;
+        x <<= 4;
+    }
+    if x < 1 << 30 {
+        n += 2;
+        x <<= 2;
+    }
+    if x < 1 << 31 {
+        n += 1;
+    }
+    n
+}
+
+/// `floor(a b / 2^32)` for `a, b <= 2^31`: the high word of the product, exact, from four
+/// 16 x 16-bit products in `i32` arithmetic (every partial product and sum fits an `i32` for
+/// these operands). Written on signed halves on purpose: LLVM recognizes the textbook
+/// unsigned form as a 64-bit multiply and emits the `__aeabi_lmul` call this avoids.
+#[inline(always)]
+pub(super) fn mul_hi_u32(a: u32, b: u32) -> u32 {
+    debug_assert!(a <= 1 << 31 && b <= 1 << 31);
+    let (ah, al) = ((a >> 16) as i32, (a & 0xFFFF) as i32);
+    let (bh, bl) = ((b >> 16) as i32, (b & 0xFFFF) as i32);
+    // ah, bh <= 2^15 and al, bl < 2^16: ah bl < 2^31; al bl as u32.
+    let (m1, m2, ll) = (ah * bl, al * bh, (al as u32) * (bl as u32));
+    let mid = (ll >> 16) as i32 + (m1 & 0xFFFF) + (m2 & 0xFFFF); // < 3 2^16
+    (ah * bh + (m1 >> 16) + (m2 >> 16) + (mid >> 16)) as u32
+}
+
+/// `ceil(2^32 / o)` for the odd `o` in [3, 255] (`RECIP_ODD[(o - 3) / 2]`): the reciprocals of
+/// [`div_u32_bits`] (508 bytes).
+pub(super) const RECIP_ODD: [u32; 127] = {
+    let mut t = [0u32; 127];
+    let mut i = 0;
+    while i < 127 {
+        let o = 2 * i as u64 + 3;
+        t[i] = ((1u64 << 32).div_ceil(o)) as u32;
+        i += 1;
+    }
+    t
+};
+
+/// `a / n` in Q22 for an integer `n` in [1, 256]: bit-identical to `div_bits(a, n 2^22)` (the
+/// quotient `a / n` of the raw bits, rounded half away from zero), without its 22 restoring
+/// steps. With `n = o 2^k` (`o` odd), `q = floor(|a| ceil(2^32/o) / 2^(32 + k))` is
+/// `floor(|a|/n)` or one more (the reciprocal's excess times `|a| <= 2^31` is below 1/2); the
+/// remainder `|a| - q n` (one `MULS`) corrects it and gives the rounding bit. Other `n`: `div_bits`.
+#[inline]
+pub(super) fn div_u32_bits(a: i32, n: u32) -> i32 {
+    if n == 0 || n > 256 {
+        let b = if n >= 1 << (31 - FRAC) {
+            i32::MAX
+        } else {
+            (n << FRAC) as i32
+        };
+        return div_bits(a, b);
+    }
+    let k = n.trailing_zeros();
+    let o = n >> k;
+    let x = a.unsigned_abs(); // <= 2^31
+    let mut q = if o == 1 {
+        x >> k
+    } else {
+        mul_hi_u32(x, RECIP_ODD[(o as usize - 3) / 2]) >> k
+    };
+    // q n <= 2^31 + n: the remainder is in [-n, n) as an i32.
+    let mut r = x.wrapping_sub(q.wrapping_mul(n)) as i32;
+    if r < 0 {
+        q -= 1;
+        r += n as i32;
+    }
+    if 2 * r as u32 >= n {
+        q += 1;
+    }
+    if a < 0 {
+        // q <= 2^31 (only for n = 1, a = MIN): -q wraps to MIN, as div_bits.
+        (q as i32).wrapping_neg()
+    } else {
+        q as i32
+    }
+}
+
+/// `a n` in Q22 for an integer `n < 512`, saturated: bit-identical to `mul_bits(a, n 2^22)` (the
+/// exact product of the raw bits, clamped), from two 16 x 9-bit products. Other `n`: `mul_bits`
+/// with the saturated `from_u32(n)`, as `a * Fixed22::from_u32(n)`.
+#[inline(always)]
+pub(super) fn mul_u32_bits(a: i32, n: u32) -> i32 {
+    if n >= 1 << (31 - FRAC) {
+        return mul_bits(a, i32::MAX);
+    }
+    let n = n as i32;
+    let lo = (a & 0xFFFF) * n; // < 2^25
+    let hi = (a >> 16) * n + (lo >> 16); // the exact product >> 16
+    if (hi.wrapping_add(1 << 15) as u32) < 1 << 16 {
+        (hi << 16) | (lo & 0xFFFF)
+    } else if hi < 0 {
+        i32::MIN
+    } else {
+        i32::MAX
+    }
+}
+
+/// `a / b` in Q22, correctly rounded (ties away from zero), saturating; `x / 0` is +-MAX by the
+/// sign of `x` (0 for `0 / 0`). No 64-bit division: the integer part is one `u32` division,
+/// the 22 fraction bits and the rounding bit are restoring-division steps on the remainder
+/// (which stays below the divisor <= 2^31, so doubling it never overflows a `u32`).
+pub(super) fn div_bits(a: i32, b: i32) -> i32 {
+    let negative = (a < 0) != (b < 0);
+    let (ua, ub) = (a.unsigned_abs(), b.unsigned_abs());
+    let saturated = if negative { i32::MIN } else { i32::MAX };
+    if ub == 0 {
+        return if ua == 0 { 0 } else { saturated };
+    }
+    // |a/b| >= 2^9 cannot be represented (2^31 / 2^22).
+    if u64::from(ua) >= u64::from(ub) << (31 - FRAC) {
+        return saturated;
+    }
+    let mut q = ua / ub; // < 2^9
+    let mut r = ua - q * ub;
+    for _ in 0..FRAC {
+        r <<= 1;
+        q <<= 1;
+        if r >= ub {
+            r -= ub;
+            q |= 1;
+        }
+    }
+    // Round half away from zero: the next quotient bit.
+    if r >= ub - r {
+        q += 1;
+    }
+    if negative {
+        // q <= 2^31 here, so -q fits (and -2^31 is i32::MIN).
+        (q as i64).wrapping_neg() as i32
+    } else if q > i32::MAX as u32 {
+        i32::MAX
+    } else {
+        q as i32
+    }
+}
+
+/// `a * b` exactly, from four 16 x 16-bit products. ARMv6-M (Cortex-M0) has only a
+/// 32 x 32 -> 32-bit multiply, and the compiler's `i64` product is a call to the 64 x 64-bit
+/// `__aeabi_lmul`; this is the 32 x 32 -> 64 product the fixed-point path needs, inline.
+/// (Measured in the QEMU harness: see the module docs.)
+#[inline(always)]
+pub(super) fn wide_mul(a: i32, b: i32) -> i64 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah|, |bh| <= 2^15 and al, bl < 2^16: the cross products fit an i32, the low one a u32.
+    let hh = i64::from(ah * bh);
+    let mid = i64::from(ah * bl) + i64::from(al * bh);
+    let ll = i64::from((al as u32) * (bl as u32));
+    (hh << 32) + (mid << 16) + ll
+}
+
+/// `x * y` of two Q30 values with `|x|, |y| < 2` (so each fits an `i32`), rounded down.
+#[inline(always)]
+pub(super) fn mul_q30(x: i64, y: i64) -> i64 {
+    debug_assert!(x == i64::from(x as i32) && y == i64::from(y as i32));
+    wide_mul(x as i32, y as i32) >> 30
+}
+
+/// Horner's rule in Q30 over `c[0] + c[1] z + c[2] z^2 + ...`.
+#[inline(always)]
+pub(super) fn horner_q30(c: &[i64], z: i64) -> i64 {
+    let mut acc = 0i64;
+    let mut i = c.len();
+    while i > 0 {
+        i -= 1;
+        acc = c[i] + mul_q30(acc, z);
+    }
+    acc
+}
+
+/// Q30 to Q22, rounded to nearest, saturated.
+#[inline(always)]
+pub(super) fn q30_to_q22(x: i64) -> i32 {
+    let r = (x + (1 << 7)) >> 8;
+    r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+}
+
+// Minimax coefficients, Q30 (fitted by Lawson's iteration on 4000 Chebyshev nodes).
+/// `atan t = t P(t^2)`, `|t| <= tan(pi/8)`: max error 6.8e-9 (Chebyshev interpolation).
+pub(super) const ATAN_Q30: [i32; 5] = [1073741804, -357908062, 214470077, -148697031, 85644781];
+/// `sin r = r P(r^2)`, `|r| <= pi/4`: max error 1.2e-9.
+pub(super) const SIN_Q30: [i64; 4] = [1073741809, -178956649, 8945971, -208973];
+/// `cos r = P(r^2)`, `|r| <= pi/4`: max error 4.7e-11.
+pub(super) const COS_Q30: [i64; 5] = [1073741824, -536870908, 44739189, -1491064, 26178];
+/// `e^r = P(r)`, `r` in [0, ln 2): max error 2.6e-9.
+pub(super) const EXP_Q30: [i64; 7] = [
+    1073741827, 1073741427, 536879948, 178879952, 45050186, 8310826, 2119227,
+];
+/// `ln(1 + t) = t P(t)`, `t` in [1/sqrt(2) - 1, sqrt(2) - 1]: max error 4.6e-9.
+pub(super) const LN1P_Q30: [i64; 9] = [
+    1073741696, -536870620, 357931939, -268470760, 214091674, -177520736, 161787055, -156520659,
+    93339587,
+];
+
+pub(super) const PI_Q30: i64 = 3_373_259_426; // pi 2^30
+pub(super) const FRAC_PI_2_Q30: i64 = 1_686_629_713; // pi/2 2^30
+pub(super) const FRAC_PI_2_Q38: i64 = 431_777_206_567; // pi/2 2^38
+pub(super) const FRAC_2_PI_Q32: i64 = 2_734_261_102; // 2/pi 2^32
+pub(super) const LN2_Q30: i64 = 744_261_118; // ln 2 2^30
+pub(super) const LN2_Q38: i64 = 190_530_846_202; // ln 2 2^38
+pub(super) const INV_LN2_Q32: i64 = 6_196_328_019; // 1/ln 2 2^32
+pub(super) const SQRT2_Q30: u32 = 1_518_500_250; // sqrt 2 2^30
+
+/// `floor(a b / 2^30)` of two Q30 values whose product fits (`|a b| < 2^61`), in 32-bit
+/// arithmetic as [`mul_bits`] (`floor(P / 2^30) = 4 H + floor(w / 2^14)`).
+#[inline(always)]
+pub(super) fn mul_q30_32(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let (m1, m2, ll) = (ah * bl, al * bh, (al as u32) * (bl as u32));
+    let h = ah * bh + (m1 >> 16) + (m2 >> 16);
+    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16);
+    (h << 2) + (w >> 14) as i32
+}
+
+/// `tan(pi/8) 2^32`.
+pub(super) const TAN_PI_8_Q32: u32 = 1_779_033_704;
+/// `pi/4 2^30`.
+pub(super) const FRAC_PI_4_Q30: i32 = 843_314_857;
+
+/// `atan2(y, x)` in Q30. Octant reduction to `t = num/den` in [0, 1], then
+/// `atan t = pi/4 + atan((num - den)/(num + den))` above `tan(pi/8)`, so the polynomial
+/// ([`ATAN_Q30`], degree 9) only covers `|t| <= tan(pi/8)`. The ratio `n/d` is `n (1/sqrt d)^2`
+/// from [`rsqrt_core`] (relative 2^-28.5; no restoring division), in Q28.
+pub(super) fn atan2_q30(y: i32, x: i32) -> i64 {
+    if x == 0 && y == 0 {
+        return 0;
+    }
+    let (ax, ay) = (x.unsigned_abs(), y.unsigned_abs());
+    let swap = ay > ax;
+    let (mut num, mut den) = if swap { (ax, ay) } else { (ay, ax) }; // num <= den <= 2^31
+    if den >= 1 << 30 {
+        // Keep num + den below 2^31 (rsqrt_core's domain); 29 bits of ratio remain.
+        num >>= 1;
+        den >>= 1;
+    }
+    let upper = num > mul_hi_u32(den, TAN_PI_8_Q32);
+    let (n, d) = if upper {
+        (den - num, num + den) // the reduced ratio's magnitude
+    } else {
+        (num, den)
+    };
+    // d = (m / 2^30) 4^j, 1/d = (y / 2^32)^2 / 4^j; n 2^(30 - 2j) <= m < 2^32.
+    let (_, j, yy) = rsqrt_core(d);
+    let inv = mul_hi_u32(yy >> 1, yy >> 1); // 2^30 / (m / 2^30), <= 2^30
+    let t = (mul_hi_u32((n << (30 - 2 * j)) >> 1, inv << 1) << 2) as i32; // Q30, <= 2^30
+    let t = if upper { -t } else { t };
+    let z = mul_q30_32(t, t);
+    let mut p = ATAN_Q30[4];
+    for &c in ATAN_Q30[..4].iter().rev() {
+        p = c + mul_q30_32(p, z);
+    }
+    let mut a = i64::from(mul_q30_32(t, p));
+    if upper {
+        a += i64::from(FRAC_PI_4_Q30);
+    }
+    if swap {
+        a = FRAC_PI_2_Q30 - a;
+    }
+    if x < 0 {
+        a = PI_Q30 - a;
+    }
+    if y < 0 {
+        -a
+    } else {
+        a
+    }
+}
+
+/// `(sin x, cos x)` in Q30 of a Q22 argument.
+pub(super) fn sin_cos_q30(x: i32) -> (i64, i64) {
+    let x = i64::from(x);
+    // k = round(x / (pi/2)); |x 2/pi 2^32| < 2^31 2^32 fits an i64.
+    let k = (x * FRAC_2_PI_Q32 + (1 << 53)) >> 54;
+    let r = ((x << 16) - k * FRAC_PI_2_Q38 + (1 << 7)) >> 8; // Q30, |r| <= pi/4 (+ rounding)
+    let z = mul_q30(r, r);
+    let s = mul_q30(r, horner_q30(&SIN_Q30, z));
+    let c = horner_q30(&COS_Q30, z);
+    match k & 3 {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+/// `e^x` in Q22 of a Q22 argument, saturated.
+pub(super) fn exp_bits(x: i32) -> i32 {
+    // e^x < 2^9 needs x < 9 ln 2 = 6.2383 (Q22: 26165279.6).
+    if x > 26_165_279 {
+        return i32::MAX;
+    }
+    // e^-17 = 4.1e-8 is below half an LSB.
+    if x < -17 << FRAC {
+        return 0;
+    }
+    let x = i64::from(x);
+    let k = (x * INV_LN2_Q32) >> (FRAC + 32); // floor(x / ln 2), in [-25, 9]
+    let r = ((x << 16) - k * LN2_Q38) >> 8; // Q30 in [0, ln 2) (to rounding)
+    let p = horner_q30(&EXP_Q30, r); // Q30 in [1, 2)
+    let shift = 8 - k; // Q30 * 2^k -> Q22
+    let v = if shift > 0 {
+        (p + (1 << (shift - 1))) >> shift
+    } else {
+        p << -shift
+    };
+    v.min(i32::MAX as i64) as i32
+}
+
+/// Quadratic starts for `1/sqrt(m)` on the 24 intervals `[1 + i/8, 1 + (i + 1)/8)` of
+/// `[1, 4)`: `(c0 2^30, c1 2^19, c2 2^19)` of `c0 + c1 t + c2 t^2`, `t` in [0, 1) across the
+/// interval (Chebyshev interpolation; relative error 2^-15.8 as evaluated). 192 bytes.
+pub(super) const RSQRT_SEED: [(u32, i16, u16); 24] = [
+    (1073724323, -32613, 2645),
+    (1012321715, -27357, 2002),
+    (960375622, -23374, 1559),
+    (915684119, -20271, 1241),
+    (876702073, -17797, 1008),
+    (842308993, -15789, 831),
+    (811669889, -14131, 695),
+    (784148074, -12744, 588),
+    (759248454, -11571, 503),
+    (736579457, -10566, 434),
+    (715826767, -9699, 378),
+    (696734772, -8945, 331),
+    (679093179, -8283, 292),
+    (662727185, -7699, 260),
+    (647490122, -7180, 232),
+    (633257899, -6718, 208),
+    (619924716, -6303, 187),
+    (607399740, -5928, 169),
+    (595604486, -5590, 154),
+    (584470742, -5282, 140),
+    (573938903, -5002, 128),
+    (563956619, -4746, 118),
+    (554477702, -4511, 108),
+    (545461221, -4294, 100),
+];
+
+/// The shared core of `sqrt`, `rsqrt` and `sqrt_rsqrt`: for `v > 0`, `(m, j, y)` with
+/// `v = (m / 2^30) 4^j`, `m` in `[2^30, 2^32)` and `y = 2^32 / sqrt(m / 2^30)` to a relative
+/// 2^-29.5 (`y < 2^32`). A quadratic start from [`RSQRT_SEED`] (2^-15.8) and one Newton step
+/// `y (1 + (1 - m y^2)/2)`, all in `u32` with 16 x 16-bit products (no 64-bit multiply): the
+/// step's correction `1 - m y^2` is below 2^-14, so its product with `y` takes two of them.
+#[inline(always)]
+pub(super) fn rsqrt_core(v: u32) -> (u32, u32, u32) {
+    let j2 = (31 - clz(v)) & !1; // even, <= 30
+    let m = v << (30 - j2);
+    let (c0, c1, c2) = RSQRT_SEED[(m >> 27) as usize - 8];
+    let t = ((m >> 11) & 0xFFFF) as i32;
+    // |c1| < 2^15, t < 2^16: every product fits an i32.
+    let inner = i32::from(c1) + ((i32::from(c2) * t) >> 16);
+    let y0 = (c0 as i32 + ((inner * t) >> 5)).min((1 << 30) - 1) as u32;
+    let y = y0 << 2; // Q32
+                     // m >= 2^31 has a zero low bit (m = v << (30 - j2) and v < 2^31): m/2 is exact, Q29.
+    let (mh, yh) = (m >> 1, y >> 1); // both < 2^31
+    let s = mul_hi_u32(mh, yh); // m y, Q28, < 2^29
+    let e = mul_hi_u32(s << 2, yh); // m y^2, Q29 (s << 2 < 2^31)
+    let c = (1u32 << 29).wrapping_sub(e) as i32; // (1 - m y^2), Q29, |c| < 2^15
+    let (yh, yl) = ((y >> 16) as i32, (y & 0xFFFF) as i32);
+    let delta = (yh * c + ((yl * c) >> 16)) >> 14; // y (1 - m y^2) / 2, Q32
+    let y = if delta >= 0 {
+        y.saturating_add(delta as u32)
+    } else {
+        y - delta.unsigned_abs()
+    };
+    (m, j2 / 2, y)
+}
+
+/// `1/sqrt(x)` in Q22 of a Q22 argument, rounded, saturated (MAX below `2^-18`); 0 for
+/// `x <= 0`. With `x = v 2^-22` and `v = m 4^j`: `1/sqrt(x) = (y / 2^32) 2^(11 - j)`, so the
+/// bits are `y` shifted right by `j - 1`.
+#[inline]
+pub(super) fn rsqrt_bits(x: i32) -> i32 {
+    if x <= 0 {
+        return 0;
+    }
+    let (_, j, y) = rsqrt_core(x as u32);
+    rsqrt_out(j, y)
+}
+
+/// The Q22 bits of `1/sqrt(x)` from `rsqrt_core`'s `(j, y)`: `y / 2^(j - 1)` rounded, MAX for
+/// `j <= 1` (`x < 2^-18`, where the result exceeds 512).
+#[inline(always)]
+pub(super) fn rsqrt_out(j: u32, y: u32) -> i32 {
+    if j <= 1 {
+        return i32::MAX;
+    }
+    let t = y >> (j - 2);
+    ((t >> 1) + (t & 1)).min(i32::MAX as u32) as i32
+}
+
+/// The Q22 bits of `sqrt(x)` from `rsqrt_core`'s `(m, j, y)`: `m y / 2^(19 - j)` rounded.
+#[inline(always)]
+pub(super) fn sqrt_out(m: u32, j: u32, y: u32) -> i32 {
+    let s = mul_hi_u32(m >> 1, y >> 1) << 2; // m y, Q30, < 2^31 (m >> 1 exact, see rsqrt_core)
+    let sh = 19 - j; // >= 4
+    ((s + (1 << (sh - 1))) >> sh) as i32
+}
+
+/// `sqrt(x)` in Q22 of a Q22 argument, rounded; 0 for `x <= 0`. `sqrt(x) = m y 2^(j - 11)`
+/// with `m y` in Q30: the bits are `m y` shifted right by `19 - j` (>= 4).
+#[inline]
+pub(super) fn sqrt_bits(x: i32) -> i32 {
+    if x <= 0 {
+        return 0;
+    }
+    let (m, j, y) = rsqrt_core(x as u32);
+    sqrt_out(m, j, y)
+}
+
+/// `ln x` in Q22 of a Q22 argument; `i32::MIN` (-512) for `x <= 0`.
+pub(super) fn ln_bits(x: i32) -> i32 {
+    if x <= 0 {
+        return i32::MIN;
+    }
+    let v = x as u32;
+    let top = 31 - v.leading_zeros(); // position of the leading one, 0..=30
+    let mut m = v << (30 - top); // Q30 in [1, 2)
+    let mut e = top as i64 - FRAC as i64;
+    if m > SQRT2_Q30 {
+        m >>= 1;
+        e += 1;
+    }
+    let t = i64::from(m) - (1 << 30);
+    let l = mul_q30(t, horner_q30(&LN1P_Q30, t));
+    q30_to_q22(e * LN2_Q30 + l)
+}
+
