@@ -61,6 +61,12 @@ pub const PERIOD: u32 = 120;
 /// UV sphere resolution (rings of latitude, segments of longitude).
 const SPHERE_STACKS: u16 = 10;
 const SPHERE_SLICES: u16 = 20;
+/// The lamp's own UV sphere: about 20 pixels across on screen, where the big sphere's 10 x 20
+/// would spend 180 front-facing triangles (a quarter of the frame's triangle setups) on 300
+/// pixels. A coarser mesh for the small object (level of detail).
+const LAMP_STACKS: u16 = 6;
+const LAMP_SLICES: u16 = 10;
+
 /// Torus resolution (segments around the axis, around the tube).
 const TORUS_MAJOR: u16 = 24;
 const TORUS_MINOR: u16 = 10;
@@ -69,6 +75,10 @@ const TORUS_MINOR: u16 = 10;
 pub const SPHERE_VERTICES: usize = (SPHERE_STACKS as usize + 1) * (SPHERE_SLICES as usize + 1);
 /// Triangles of the UV sphere.
 pub const SPHERE_TRIANGLES: usize = 2 * SPHERE_SLICES as usize * (SPHERE_STACKS as usize - 1);
+/// Vertices of the lamp's UV sphere.
+pub const LAMP_VERTICES: usize = (LAMP_STACKS as usize + 1) * (LAMP_SLICES as usize + 1);
+/// Triangles of the lamp's UV sphere.
+pub const LAMP_TRIANGLES: usize = 2 * LAMP_SLICES as usize * (LAMP_STACKS as usize - 1);
 /// Vertices of the torus (see `mesh::torus_counts`).
 pub const TORUS_VERTICES: usize = (TORUS_MAJOR as usize + 1) * (TORUS_MINOR as usize + 1);
 /// Triangles of the torus.
@@ -87,19 +97,21 @@ const LAMP_RADIUS: f64 = 0.15;
 const LAMP_ORBIT: f64 = 1.3;
 const LAMP_HEIGHT: f64 = 0.75;
 
-/// The caller's storage for the scene (no allocation): one unit UV sphere (drawn twice: the
-/// big sphere and, scaled down, the lamp) and one torus, their per-frame vertex data (one
-/// [`PreparedVertex`] per vertex drawn: the sphere's twice) and the encoding table. About
-/// 85 KiB with `f32` or `Fixed22`. Put it in a `static` (e.g. `cortex_m::singleton!`) or on the
-/// heap; [`Demo::new`] fills it.
+/// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
+/// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
+/// [`PreparedVertex`] per vertex) and the encoding table. About
+/// 65 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
+/// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
     sphere_triangles: [[u16; 3]; SPHERE_TRIANGLES],
     torus_vertices: [Vertex<T>; TORUS_VERTICES],
     torus_triangles: [[u16; 3]; TORUS_TRIANGLES],
+    lamp_vertices: [Vertex<T>; LAMP_VERTICES],
+    lamp_triangles: [[u16; 3]; LAMP_TRIANGLES],
     sphere_frame: [PreparedVertex<T>; SPHERE_VERTICES],
     torus_frame: [PreparedVertex<T>; TORUS_VERTICES],
-    lamp_frame: [PreparedVertex<T>; SPHERE_VERTICES],
+    lamp_frame: [PreparedVertex<T>; LAMP_VERTICES],
     table: EncodeTable,
 }
 
@@ -117,9 +129,11 @@ impl<T: Real> MeshBuffers<T> {
             sphere_triangles: [[0; 3]; SPHERE_TRIANGLES],
             torus_vertices: [Self::ZERO_VERTEX; TORUS_VERTICES],
             torus_triangles: [[0; 3]; TORUS_TRIANGLES],
+            lamp_vertices: [Self::ZERO_VERTEX; LAMP_VERTICES],
+            lamp_triangles: [[0; 3]; LAMP_TRIANGLES],
             sphere_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
             torus_frame: [PreparedVertex::EMPTY; TORUS_VERTICES],
-            lamp_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
+            lamp_frame: [PreparedVertex::EMPTY; LAMP_VERTICES],
             table: EncodeTable::zeroed(),
         }
     }
@@ -139,6 +153,8 @@ pub struct Demo<'a, T> {
     lamp: PreparedMesh<'a, 'a, T>,
     red: Material<T>,
     teal: Material<T>,
+    /// The panel light (it does not move: validated once, here).
+    panel: PolygonLight<T, 4>,
     /// Options for the sphere and the torus (the shading mode chosen by the firmware, per
     /// object: [`Demo::set_shading`]).
     lit: [DrawOptions<T>; 2],
@@ -193,6 +209,8 @@ impl<'a, T: Real> Demo<'a, T> {
             sphere_triangles,
             torus_vertices,
             torus_triangles,
+            lamp_vertices,
+            lamp_triangles,
             sphere_frame,
             torus_frame,
             lamp_frame,
@@ -213,9 +231,20 @@ impl<'a, T: Real> Demo<'a, T> {
             torus_vertices,
             torus_triangles,
         )?;
+        let lamp = mesh::uv_sphere(
+            T::ONE,
+            LAMP_STACKS,
+            LAMP_SLICES,
+            lamp_vertices,
+            lamp_triangles,
+        )?;
         let sphere = Mesh::new(
             &sphere_vertices[..sphere.vertices],
             &sphere_triangles[..sphere.triangles],
+        )?;
+        let lamp = Mesh::new(
+            &lamp_vertices[..lamp.vertices],
+            &lamp_triangles[..lamp.triangles],
         )?;
         let torus = Mesh::new(
             &torus_vertices[..torus.vertices],
@@ -246,7 +275,15 @@ impl<'a, T: Real> Demo<'a, T> {
             camera,
             sphere: PreparedMesh::new(sphere, sphere_frame)?,
             torus: PreparedMesh::new(torus, torus_frame)?,
-            lamp: PreparedMesh::new(sphere, lamp_frame)?,
+            lamp: PreparedMesh::new(lamp, lamp_frame)?,
+            // The panel: 2 x 1.4 units, 1.9 above the floor-less ground, facing down (a
+            // polygon light emits from both faces).
+            panel: PolygonLight::new(&[
+                v3([-1.0, 1.9, -1.0]),
+                v3([1.0, 1.9, -1.0]),
+                v3([1.0, 1.9, 0.4]),
+                v3([-1.0, 1.9, 0.4]),
+            ])?,
             // Red plastic with a broad highlight, teal with a tighter one.
             red: Material::new(
                 Rgb::from_f64([0.85, 0.22, 0.12]),
@@ -293,14 +330,7 @@ impl<'a, T: Real> Demo<'a, T> {
             T::from_f64(LAMP_ORBIT) * c,
         );
         let lamp = SphereLight::new(lamp_at, T::from_f64(LAMP_RADIUS))?;
-        // The panel: 2 x 1.4 units, 1.9 above the floor-less ground, facing down (a polygon
-        // light emits from both faces).
-        let panel = PolygonLight::<T, 4>::new(&[
-            v3([-1.0, 1.9, -1.0]),
-            v3([1.0, 1.9, -1.0]),
-            v3([1.0, 1.9, 0.4]),
-            v3([-1.0, 1.9, 0.4]),
-        ])?;
+        let panel = self.panel.clone();
         // Colours scale the models' normalized irradiance (unit radiance): the panel subtends
         // about 0.3 sr from the objects, the lamp much less, hence the large factors.
         let lamp_colour = Rgb::from_f64([1.0, 0.8, 0.55]);
@@ -440,7 +470,7 @@ impl<'a, T: Real> Demo<'a, T> {
 pub struct ColourExchange {
     sphere: [VertexColour; SPHERE_VERTICES],
     torus: [VertexColour; TORUS_VERTICES],
-    lamp: [VertexColour; SPHERE_VERTICES],
+    lamp: [VertexColour; LAMP_VERTICES],
 }
 
 impl ColourExchange {
@@ -449,7 +479,7 @@ impl ColourExchange {
         ColourExchange {
             sphere: [VertexColour::BLACK; SPHERE_VERTICES],
             torus: [VertexColour::BLACK; TORUS_VERTICES],
-            lamp: [VertexColour::BLACK; SPHERE_VERTICES],
+            lamp: [VertexColour::BLACK; LAMP_VERTICES],
         }
     }
 }
