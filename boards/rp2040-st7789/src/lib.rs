@@ -31,30 +31,32 @@ const RASET: u16 = 0x2B;
 /// Memory write: the pixels follow.
 const RAMWR: u16 = 0x2C;
 
-/// The DMA buffer of one band: its pixels as the 16-bit words SPI1 sends.
-pub type DmaBuffer = [u16; BAND_PIXELS];
+/// The DMA buffer of one band of `N` pixels (by default the scene's 240 x 16): its pixels as
+/// the 16-bit words SPI1 sends.
+pub type DmaBuffer<const N: usize = BAND_PIXELS> = [u16; N];
 
 /// The sender's resources, either idle or lent to a DMA transfer in flight.
-enum State<CH: SingleChannel, SPI: WriteTarget<TransmittedWord = u16>> {
-    Idle(CH, &'static mut DmaBuffer, SPI),
-    Sending(single_buffer::Transfer<CH, &'static mut DmaBuffer, SPI>),
+enum State<CH: SingleChannel, SPI: WriteTarget<TransmittedWord = u16>, const N: usize> {
+    Idle(CH, &'static mut DmaBuffer<N>, SPI),
+    Sending(single_buffer::Transfer<CH, &'static mut DmaBuffer<N>, SPI>),
     /// Only while moving between the two (never observed outside `send`).
     Moving,
 }
 
-/// Sends bands to an ST7789 over a 16-bit SPI (`SPI`) by DMA channel `CH`, with the data /
-/// command pin `DC` and the chip select `CS` (held low from the first band on).
-pub struct BandSender<CH, SPI, DC, CS>
+/// Sends bands of up to `N` pixels to an ST7789 over a 16-bit SPI (`SPI`) by DMA channel
+/// `CH`, with the data / command pin `DC` and the chip select `CS` (held low from the first
+/// band on).
+pub struct BandSender<CH, SPI, DC, CS, const N: usize = BAND_PIXELS>
 where
     CH: SingleChannel,
     SPI: WriteTarget<TransmittedWord = u16>,
 {
-    state: State<CH, SPI>,
+    state: State<CH, SPI, N>,
     dc: DC,
     cs: CS,
 }
 
-impl<CH, SPI, DC, CS> BandSender<CH, SPI, DC, CS>
+impl<CH, SPI, DC, CS, const N: usize> BandSender<CH, SPI, DC, CS, N>
 where
     CH: SingleChannel,
     SPI: SpiBus<u16> + WriteTarget<TransmittedWord = u16>,
@@ -63,7 +65,7 @@ where
 {
     /// A sender over `spi` (configured for 16-bit frames), DMA channel `ch`, the band buffer
     /// `buffer` and the display's control pins.
-    pub fn new(ch: CH, spi: SPI, buffer: &'static mut DmaBuffer, dc: DC, cs: CS) -> Self {
+    pub fn new(ch: CH, spi: SPI, buffer: &'static mut DmaBuffer<N>, dc: DC, cs: CS) -> Self {
         BandSender {
             state: State::Idle(ch, buffer, spi),
             dc,
@@ -73,7 +75,7 @@ where
 
     /// Waits for the band in flight (if any) to leave the SPI completely; returns the idle
     /// resources.
-    fn finish(&mut self) -> (CH, &'static mut DmaBuffer, SPI) {
+    fn finish(&mut self) -> (CH, &'static mut DmaBuffer<N>, SPI) {
         let (ch, buffer, mut spi) = match core::mem::replace(&mut self.state, State::Moving) {
             State::Idle(ch, buffer, spi) => (ch, buffer, spi),
             State::Sending(transfer) => transfer.wait(),
