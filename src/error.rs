@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-/// Why an input was rejected (the list of `../shared/spec/models.md`, "Inputs that are not valid").
+/// Why an input was rejected (the list of the repository's `docs/models.md`, "Inputs that are not valid").
 ///
 /// Variants that carry a `&'static str` name the offending parameter as the eval protocol and
 /// the spec spell it (`"n"`, `"axis"`, `"verts"`, ...).

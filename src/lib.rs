@@ -10,7 +10,7 @@
 //! [`Result`]; per-sample functions return a documented finite fallback (0) for inputs that
 //! have no value, and never NaN or infinity.
 //!
-//! Every model is defined by the integral it evaluates (`shared/spec/models.md` in the project)
+//! Every model is defined by the integral it evaluates (`docs/models.md` in the repository)
 //! and tested against an independent numerical quadrature of that integral (`tests/`).
 //!
 //! | model id | type and method | source |

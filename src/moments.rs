@@ -47,7 +47,7 @@
 //! signed solid angle, is the fan of Van Oosterom-Strackee triangles of [`crate::polygon`]
 //! (Arvo 5.1).
 //!
-//! **Orientation.** The raw integrals carry no orientation sign (`shared/spec/models.md`): the
+//! **Orientation.** The raw integrals carry no orientation sign (`docs/models.md`): the
 //! sum above is multiplied by the orientation of the ring seen from `p`, the sign of
 //! `N.(v - p)` (averaged over the vertices), `N` the polygon's right-handed normal. So the
 //! result is the integral over the projection whatever the winding. A point in the polygon's

@@ -1,10 +1,12 @@
 //! `host-sim`: the host side of arealight.
 //!
 //! - `host-sim eval --backend f64|f32|f32-fast|fixed`: the eval protocol
-//!   (`shared/spec/eval-protocol.md`), JSON Lines from stdin to stdout.
+//!   (`docs/eval-protocol.md`; the models in `docs/models.md`), JSON Lines from stdin to
+//!   stdout; `host-sim eval --list-models` lists the model ids and their parameters.
 //! - `host-sim render [--out DIR] [--only NAMES] [--scene FILE]` (the default with no
 //!   arguments): the contact sheet, the documents' figures rendered with the crate's
-//!   rasterizer, and the backend comparison sheets, as PNG files in `DIR` (default `out/`).
+//!   rasterizer, and the backend comparison sheets, as PNG files in `DIR` (default `out/`);
+//!   or a TOML scene file (`docs/scene-format.md`).
 //! - `host-sim plot [--out DIR]`: Snyder's figures 2 to 6 as line plots.
 //! - `host-sim budget [--out DIR]`: the accuracy/cost budget (budget.md, budget.csv,
 //!   budget.png), with the QEMU harness's instruction counts where present.
@@ -36,12 +38,16 @@ struct Cli {
 enum Command {
     /// Evaluate models from JSON Lines on stdin (the eval protocol).
     ///
-    /// Reads one JSON object per line ({"id": ..., "model": ..., parameters}) and writes one
-    /// JSON line per input line to stdout, in the same order: {"id", "value"}, {"id", "rgb"}
-    /// or {"id", "error"}. The strings "NaN", "Infinity" and "-Infinity" stand for those
-    /// numbers (and are refused as invalid input). Blank lines are skipped (no output line).
-    /// A line that is not valid JSON gets an error with "id": null. Always exits 0 unless
-    /// reading or writing fails.
+    /// Reads one JSON object per line, {"id": ..., "model": ..., and the model's parameters},
+    /// and writes one JSON line per input line to stdout, in the same order: {"id", "value"},
+    /// {"id", "rgb"} or {"id", "error"}. --list-models prints the model ids and their
+    /// parameters. The strings "NaN", "Infinity" and "-Infinity" stand for those numbers (and
+    /// are refused as invalid input). Blank lines are skipped (no output line). A line that
+    /// is not valid JSON, is not an object or has no id gets an error that starts with its
+    /// input line number (and "id": null unless an id could be read); unknown or missing
+    /// parameters are errors on their line. The exit status is 0 unless reading or writing
+    /// fails, even when some lines got an error (the protocol's rule); then one summary line
+    /// goes to stderr. Full description: docs/eval-protocol.md; the models: docs/models.md.
     Eval(eval::EvalArgs),
     /// Render the pictures (the default subcommand): the contact sheet and every figure.
     ///
@@ -53,7 +59,7 @@ enum Command {
     /// reflection), arvo_fig8.png (frosted glass), picott_plates.png (point, linear and area
     /// light); and compare_polygon.png, compare_sphere.png (the same frame in f64, f32,
     /// f32-fast and fixed point with error heat maps). Prints each path written, one per line.
-    /// With --scene FILE renders a TOML scene file instead.
+    /// With --scene FILE renders a TOML scene file instead (docs/scene-format.md).
     Render(render::RenderArgs),
     /// Plot Snyder's figures 2 to 6 (intensity against omega) as PNG line plots.
     ///

@@ -1,10 +1,16 @@
 //! Scenes from TOML files (`host-sim render --scene FILE`): camera, lights, materials and
-//! meshes, rendered in f32 with the crate's rasterizer. See `host-sim/scenes/example.toml`.
+//! meshes, rendered in f32 with the crate's rasterizer. The format (every key, its type, unit,
+//! default and range) is described in `docs/scene-format.md`; `host-sim/scenes/example.toml`
+//! is a complete example.
 //!
-//! Every error names the file, line and column: TOML syntax and unknown or mistyped keys (from
-//! the parser), and the library's refusals (a zero-area polygon, a sphere radius <= 0, an
-//! unknown material) at the entry that caused them.
+//! Every error names the file, line and column, and uses the file's own key names: TOML
+//! syntax, unknown keys (with a suggestion when one is a near miss) and mistyped values (from
+//! the parser); values out of range (at the key, with the allowed range); and the library's
+//! refusals (a zero-area polygon, a zero direction) at the key that caused them. A Phong
+//! exponent above 1000 is accepted with a warning (the cost of a specular sample grows
+//! linearly with it).
 
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use arealight::raster::{Affine, Camera, Material, Projection, RasterError, Shading};
@@ -16,112 +22,145 @@ use arealight::{
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::eval::{closest, did_you_mean};
 use crate::figure;
 use crate::scenes::{self, Lights, Object, Scene, Surface};
+
+/// The largest viewport side (the rasterizer's).
+const MAX_SIDE: i64 = arealight::raster::MAX_VIEWPORT as i64;
+/// The largest Phong exponent (the library's).
+const MAX_EXPONENT: i64 = arealight::phong::MAX_EXPONENT as i64;
+/// Above this exponent a scene renders, with a warning: every specular sample costs O(m).
+const SLOW_EXPONENT: i64 = 1000;
+/// The vertex capacity of a polygon light in a scene file.
+const MAX_POLYGON: usize = 16;
+/// The most vertices a mesh may have (16-bit indices).
+const MAX_MESH_VERTICES: i64 = 1 << 16;
+
+type S<T> = Spanned<T>;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct File {
-    camera: Spanned<CameraDef>,
+    camera: S<CameraDef>,
     #[serde(default)]
-    light: Vec<Spanned<LightDef>>,
+    light: Vec<S<LightDef>>,
     #[serde(default)]
-    material: Vec<Spanned<MaterialDef>>,
+    material: Vec<S<MaterialDef>>,
     #[serde(default)]
-    mesh: Vec<Spanned<MeshDef>>,
-}
-
-fn default_up() -> [f64; 3] {
-    [0.0, 1.0, 0.0]
-}
-fn default_fov() -> f64 {
-    40.0
-}
-fn white() -> [f64; 3] {
-    [1.0, 1.0, 1.0]
+    mesh: Vec<S<MeshDef>>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CameraDef {
-    eye: [f64; 3],
-    target: [f64; 3],
-    #[serde(default = "default_up")]
-    up: [f64; 3],
-    #[serde(default = "default_fov")]
-    fov_deg: f64,
-    width: u16,
-    height: u16,
-    /// Omitted: 0.8 over the light's diffuse value at the origin with normal +y.
-    exposure: Option<f64>,
-    #[serde(default)]
-    background: [u8; 3],
+    eye: S<[f64; 3]>,
+    target: S<[f64; 3]>,
+    up: Option<S<[f64; 3]>>,
+    fov_deg: Option<S<f64>>,
+    width: S<i64>,
+    height: S<i64>,
+    /// Omitted: 0.8 over the lights' diffuse value at the origin with normal +y.
+    exposure: Option<S<f64>>,
+    background: Option<S<[i64; 3]>>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LightDef {
-    kind: String,
-    #[serde(default = "white")]
-    colour: [f64; 3],
-    direction: Option<[f64; 3]>,
-    position: Option<[f64; 3]>,
-    #[serde(default)]
-    inverse_square: bool,
-    axis: Option<[f64; 3]>,
-    sigma_deg: Option<f64>,
-    center: Option<[f64; 3]>,
-    radius: Option<f64>,
-    vertices: Option<Vec<[f64; 3]>>,
-    a: Option<[f64; 3]>,
-    b: Option<[f64; 3]>,
-    origin: Option<[f64; 3]>,
-    eu: Option<[f64; 3]>,
-    ev: Option<[f64; 3]>,
-    sky: Option<[f64; 3]>,
-    ground: Option<[f64; 3]>,
-    environment: Option<String>,
-}
-
-fn default_exponent() -> u32 {
-    1
+    kind: S<String>,
+    colour: Option<S<[f64; 3]>>,
+    direction: Option<S<[f64; 3]>>,
+    position: Option<S<[f64; 3]>>,
+    inverse_square: Option<S<bool>>,
+    axis: Option<S<[f64; 3]>>,
+    sigma_deg: Option<S<f64>>,
+    center: Option<S<[f64; 3]>>,
+    radius: Option<S<f64>>,
+    vertices: Option<S<Vec<[f64; 3]>>>,
+    a: Option<S<[f64; 3]>>,
+    b: Option<S<[f64; 3]>>,
+    origin: Option<S<[f64; 3]>>,
+    eu: Option<S<[f64; 3]>>,
+    ev: Option<S<[f64; 3]>>,
+    sky: Option<S<[f64; 3]>>,
+    ground: Option<S<[f64; 3]>>,
+    environment: Option<S<String>>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct MaterialDef {
-    name: String,
-    diffuse: [f64; 3],
-    #[serde(default)]
-    specular: [f64; 3],
-    #[serde(default = "default_exponent")]
-    exponent: u32,
+    name: S<String>,
+    diffuse: S<[f64; 3]>,
+    specular: Option<S<[f64; 3]>>,
+    exponent: Option<S<i64>>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct MeshDef {
-    kind: String,
-    material: Spanned<String>,
-    #[serde(default)]
-    translate: [f64; 3],
+    kind: S<String>,
+    material: S<String>,
+    translate: Option<S<[f64; 3]>>,
     /// `[axis x, axis y, axis z, degrees]`.
-    rotate: Option<[f64; 4]>,
-    scale: Option<[f64; 3]>,
-    #[serde(default)]
-    gouraud: bool,
-    #[serde(default)]
-    two_sided: bool,
-    radius: Option<f64>,
-    stacks: Option<u16>,
-    slices: Option<u16>,
-    size: Option<[f64; 2]>,
-    cells: Option<[u16; 2]>,
-    half: Option<[f64; 3]>,
-    major: Option<f64>,
-    minor: Option<f64>,
-    segments: Option<[u16; 2]>,
+    rotate: Option<S<[f64; 4]>>,
+    scale: Option<S<[f64; 3]>>,
+    gouraud: Option<S<bool>>,
+    two_sided: Option<S<bool>>,
+    radius: Option<S<f64>>,
+    stacks: Option<S<i64>>,
+    slices: Option<S<i64>>,
+    size: Option<S<[f64; 2]>>,
+    cells: Option<S<[i64; 2]>>,
+    half: Option<S<[f64; 3]>>,
+    major: Option<S<f64>>,
+    minor: Option<S<f64>>,
+    segments: Option<S<[i64; 2]>>,
 }
+
+/// The light kinds and the keys each takes besides `kind` and `colour` (required ones first;
+/// `docs/scene-format.md` has the same table).
+const LIGHT_KINDS: &[(&str, &[&str])] = &[
+    ("directional", &["direction"]),
+    ("point", &["position", "inverse_square"]),
+    ("hemisphere", &["axis"]),
+    ("overcast", &["axis"]),
+    ("sky_ground", &["axis", "sky", "ground"]),
+    ("cap", &["axis", "sigma_deg"]),
+    ("sphere", &["center", "radius"]),
+    ("polygon", &["vertices"]),
+    ("line", &["a", "b"]),
+    ("parallelogram", &["origin", "eu", "ev"]),
+    ("sh9", &["environment"]),
+    ("ambient", &[]),
+];
+
+/// The mesh kinds and the keys each takes besides the common ones.
+const MESH_KINDS: &[(&str, &[&str])] = &[
+    ("sphere", &["radius", "stacks", "slices"]),
+    ("plane", &["size", "cells"]),
+    ("box", &["half"]),
+    ("torus", &["major", "minor", "segments"]),
+];
+
+/// The keys every mesh takes.
+const MESH_COMMON: &[&str] = &[
+    "kind",
+    "material",
+    "translate",
+    "rotate",
+    "scale",
+    "gouraud",
+    "two_sided",
+];
+
+/// The SH9 environments, by file name.
+const ENVIRONMENTS: &[(&str, Environment)] = &[
+    ("grace_cathedral", Environment::GraceCathedral),
+    ("eucalyptus_grove", Environment::EucalyptusGrove),
+    ("st_peters_basilica", Environment::StPetersBasilica),
+];
 
 /// `line:column` (1-based) of byte offset `at` in `src`.
 pub fn line_col(src: &str, at: usize) -> (usize, usize) {
@@ -134,260 +173,803 @@ pub fn line_col(src: &str, at: usize) -> (usize, usize) {
     (line, col)
 }
 
-/// An error located at `at` in the file.
-struct Located {
-    at: usize,
-    msg: String,
-}
-
-fn at<E: std::fmt::Display>(at: usize) -> impl Fn(E) -> Located {
-    move |e| Located {
-        at,
-        msg: e.to_string(),
+/// The start of the key whose value starts at `value` (`width = 0`: the `w`), found by
+/// walking back over `=` and the key; `value` itself if the text is not `key = value`.
+fn key_start(src: &str, value: usize) -> usize {
+    let b = src.as_bytes();
+    let mut i = value.min(b.len());
+    let ws = |c: u8| c == b' ' || c == b'\t';
+    while i > 0 && ws(b[i - 1]) {
+        i -= 1;
+    }
+    if i == 0 || b[i - 1] != b'=' {
+        return value;
+    }
+    i -= 1;
+    while i > 0 && ws(b[i - 1]) {
+        i -= 1;
+    }
+    let end = i;
+    while i > 0 && (b[i - 1].is_ascii_alphanumeric() || matches!(b[i - 1], b'_' | b'-' | b'"')) {
+        i -= 1;
+    }
+    if i == end {
+        value
+    } else {
+        i
     }
 }
 
-fn need<T: Copy>(x: Option<T>, kind: &str, key: &str, pos: usize) -> Result<T, Located> {
-    x.ok_or_else(|| Located {
-        at: pos,
-        msg: format!("a {kind} needs `{key}`"),
-    })
+/// An error located at byte `at` of the file, or at the key of the value at `at`.
+struct Located {
+    at: usize,
+    key: bool,
+    msg: String,
+}
+
+/// An error at the key of the value spanning `span`.
+fn at_key(span: Range<usize>, msg: impl Into<String>) -> Located {
+    Located {
+        at: span.start,
+        key: true,
+        msg: msg.into(),
+    }
+}
+
+/// An error at byte `at` itself (a table header, a value).
+fn at(at: usize, msg: impl Into<String>) -> Located {
+    Located {
+        at,
+        key: false,
+        msg: msg.into(),
+    }
+}
+
+/// The byte offset of a located error in `src`.
+fn resolve(src: &str, l: &Located) -> usize {
+    if l.key {
+        key_start(src, l.at)
+    } else {
+        l.at
+    }
+}
+
+/// Formats a number as written in a file (`0.5`, `-1`, `1e300`).
+fn show(x: f64) -> String {
+    if x.is_nan() {
+        "nan".into()
+    } else if x.is_infinite() {
+        if x > 0.0 { "inf" } else { "-inf" }.into()
+    } else if x != 0.0 && (x.abs() >= 1e9 || x.abs() < 1e-6) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// `key` must be finite (TOML allows `nan` and `inf`).
+fn finite<const K: usize>(key: &str, v: &S<[f64; K]>) -> Result<[f64; K], Located> {
+    if v.get_ref().iter().all(|x| x.is_finite()) {
+        Ok(*v.get_ref())
+    } else {
+        Err(at_key(
+            v.span(),
+            format!("`{key}` has a non-finite number (nan or inf)"),
+        ))
+    }
+}
+
+/// A number in `ok`, else `key = x is out of range: <range>`.
+fn in_range(key: &str, v: &S<f64>, ok: impl Fn(f64) -> bool, range: &str) -> Result<f64, Located> {
+    let x = *v.get_ref();
+    if x.is_finite() && ok(x) {
+        Ok(x)
+    } else {
+        Err(at_key(
+            v.span(),
+            format!("`{key}` = {} is out of range: {range}", show(x)),
+        ))
+    }
+}
+
+/// An integer in `lo..=hi`.
+fn int_in(key: &str, v: &S<i64>, lo: i64, hi: i64, unit: &str) -> Result<u16, Located> {
+    let x = *v.get_ref();
+    if (lo..=hi).contains(&x) {
+        Ok(x as u16)
+    } else {
+        Err(at_key(
+            v.span(),
+            format!("`{key}` = {x} is out of range: {lo} to {hi}{unit}"),
+        ))
+    }
+}
+
+/// A required key of a light or mesh kind.
+fn need<'a, T>(
+    x: &'a Option<S<T>>,
+    what: &str,
+    key: &str,
+    pos: usize,
+) -> Result<&'a S<T>, Located> {
+    x.as_ref()
+        .ok_or_else(|| at(pos, format!("a {what} needs `{key}`")))
 }
 
 fn v3(a: [f64; 3]) -> Vec3<f32> {
     Vec3::from_f64(a)
 }
 
-fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Located> {
-    let k = l.kind.as_str();
-    let e = at::<arealight::Error>(pos);
-    let light: Box<dyn Illuminant<f32>> = match k {
-        "directional" => Box::new(DirectionalLight::new(v3(need(l.direction, k, "direction", pos)?)).map_err(&e)?),
-        "point" => {
-            let p = v3(need(l.position, k, "position", pos)?);
-            Box::new(if l.inverse_square {
-                PointLight::inverse_square(p)
-            } else {
-                PointLight::new(p)
+/// Refuses keys that the kind does not take, at the key.
+fn only_keys(
+    present: &[(&'static str, Option<Range<usize>>)],
+    allowed: &[&str],
+    what: &str,
+) -> Result<(), Located> {
+    for (key, span) in present {
+        if let Some(span) = span {
+            if !allowed.contains(key) {
+                return Err(at_key(
+                    span.clone(),
+                    format!(
+                        "`{key}` is not a key of a {what} (its keys: {})",
+                        allowed.join(", ")
+                    ),
+                ));
             }
-            .map_err(&e)?)
         }
-        "hemisphere" => Box::new(HemisphereLight::new(v3(need(l.axis, k, "axis", pos)?)).map_err(&e)?),
-        "overcast" => Box::new(OvercastSky::new(v3(need(l.axis, k, "axis", pos)?), 1.0).map_err(&e)?),
+    }
+    Ok(())
+}
+
+fn span_of<T>(x: &Option<S<T>>) -> Option<Range<usize>> {
+    x.as_ref().map(|s| s.span())
+}
+
+impl LightDef {
+    fn present(&self) -> [(&'static str, Option<Range<usize>>); 17] {
+        [
+            ("colour", span_of(&self.colour)),
+            ("direction", span_of(&self.direction)),
+            ("position", span_of(&self.position)),
+            ("inverse_square", span_of(&self.inverse_square)),
+            ("axis", span_of(&self.axis)),
+            ("sigma_deg", span_of(&self.sigma_deg)),
+            ("center", span_of(&self.center)),
+            ("radius", span_of(&self.radius)),
+            ("vertices", span_of(&self.vertices)),
+            ("a", span_of(&self.a)),
+            ("b", span_of(&self.b)),
+            ("origin", span_of(&self.origin)),
+            ("eu", span_of(&self.eu)),
+            ("ev", span_of(&self.ev)),
+            ("sky", span_of(&self.sky)),
+            ("ground", span_of(&self.ground)),
+            ("environment", span_of(&self.environment)),
+        ]
+    }
+
+    /// The span of the file key `key`.
+    fn span(&self, key: &str) -> Option<Range<usize>> {
+        self.present()
+            .into_iter()
+            .find(|(k, _)| *k == key)
+            .and_then(|(_, s)| s)
+    }
+}
+
+/// A library refusal of a light, at the file key it concerns, in the file's names.
+fn light_error(l: &LightDef, pos: usize, e: arealight::Error) -> Located {
+    use arealight::Error as E;
+    let file_key = |p: &'static str| -> &'static str {
+        match p {
+            "to_light" => "direction",
+            "zenith" | "up" => "axis",
+            "verts" => "vertices",
+            "sigma" => "sigma_deg",
+            other => other,
+        }
+    };
+    let (key, msg) = match e {
+        E::NotFinite(p) => {
+            let k = file_key(p);
+            (k, format!("`{k}` is not finite (nan or inf, or beyond f32's range)"))
+        }
+        E::ZeroLength("segment") => ("b", "`a` and `b` are the same point".to_owned()),
+        E::ZeroLength(p) => {
+            let k = file_key(p);
+            (k, format!("`{k}` has zero length (a direction must be non-zero)"))
+        }
+        E::TooManyVertices { .. } => (
+            "vertices",
+            format!("`vertices`: more than {MAX_POLYGON} (a scene's polygon light has at most {MAX_POLYGON})"),
+        ),
+        E::TooFewVertices | E::NotPlanar | E::NotSimple => ("vertices", format!("`vertices`: {e}")),
+        E::ZeroArea if l.kind.get_ref() == "parallelogram" => {
+            ("ev", "`eu` and `ev` are parallel (the parallelogram has zero area)".to_owned())
+        }
+        E::ZeroArea => ("vertices", format!("`vertices`: {e}")),
+        E::RadiusNotPositive => ("radius", "`radius` is out of range: > 0".to_owned()),
+        E::SigmaOutOfRange => ("sigma_deg", "`sigma_deg` is out of range: 0 to 90 degrees".to_owned()),
+        other => ("", other.to_string()),
+    };
+    match l.span(key) {
+        Some(span) => at_key(span, msg),
+        None => at(pos, msg),
+    }
+}
+
+fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Located> {
+    let k = l.kind.get_ref().as_str();
+    let Some((_, keys)) = LIGHT_KINDS.iter().find(|(n, _)| *n == k) else {
+        let names: Vec<&str> = LIGHT_KINDS.iter().map(|(n, _)| *n).collect();
+        return Err(at_key(
+            l.kind.span(),
+            format!(
+                "unknown light kind {k:?}{}; kinds: {}",
+                did_you_mean(k, names.iter().copied()),
+                names.join(", ")
+            ),
+        ));
+    };
+    let mut allowed = vec!["colour"];
+    allowed.extend_from_slice(keys);
+    only_keys(&l.present(), &allowed, &format!("{k} light"))?;
+    let what = format!("{k} light");
+    let vec = |x: &Option<S<[f64; 3]>>, key: &str| -> Result<Vec3<f32>, Located> {
+        Ok(v3(finite(key, need(x, &what, key, pos)?)?))
+    };
+    let rgb = |x: &Option<S<[f64; 3]>>, key: &str| -> Result<Rgb<f32>, Located> {
+        Ok(Rgb::from_f64(finite(key, need(x, &what, key, pos)?)?))
+    };
+    let e = |e: arealight::Error| light_error(l, pos, e);
+    let light: Box<dyn Illuminant<f32>> = match k {
+        "directional" => {
+            Box::new(DirectionalLight::new(vec(&l.direction, "direction")?).map_err(e)?)
+        }
+        "point" => {
+            let p = vec(&l.position, "position")?;
+            let inverse_square = l.inverse_square.as_ref().is_some_and(|s| *s.get_ref());
+            Box::new(
+                if inverse_square {
+                    PointLight::inverse_square(p)
+                } else {
+                    PointLight::new(p)
+                }
+                .map_err(e)?,
+            )
+        }
+        "hemisphere" => Box::new(HemisphereLight::new(vec(&l.axis, "axis")?).map_err(e)?),
+        "overcast" => Box::new(OvercastSky::new(vec(&l.axis, "axis")?, 1.0).map_err(e)?),
         "sky_ground" => Box::new(
             SkyGround::new(
-                v3(need(l.axis, k, "axis", pos)?),
-                Rgb::from_f64(need(l.sky, k, "sky", pos)?),
-                Rgb::from_f64(need(l.ground, k, "ground", pos)?),
+                vec(&l.axis, "axis")?,
+                rgb(&l.sky, "sky")?,
+                rgb(&l.ground, "ground")?,
             )
-            .map_err(&e)?,
+            .map_err(e)?,
         ),
-        "cap" => Box::new(
-            CapLight::new(
-                v3(need(l.axis, k, "axis", pos)?),
-                (need(l.sigma_deg, k, "sigma_deg", pos)? as f32).to_radians(),
+        "cap" => {
+            let axis = vec(&l.axis, "axis")?;
+            let s = need(&l.sigma_deg, &what, "sigma_deg", pos)?;
+            let sigma = in_range(
+                "sigma_deg",
+                s,
+                |x| (0.0..=90.0).contains(&x),
+                "0 to 90 degrees",
+            )?;
+            Box::new(
+                CapLight::new(
+                    axis,
+                    (sigma as f32)
+                        .to_radians()
+                        .min(core::f32::consts::FRAC_PI_2),
+                )
+                .map_err(e)?,
             )
-            .map_err(&e)?,
-        ),
-        "sphere" => Box::new(
-            SphereLight::new(v3(need(l.center, k, "center", pos)?), need(l.radius, k, "radius", pos)? as f32)
-                .map_err(&e)?,
-        ),
-        "polygon" => {
-            let vs: Vec<Vec3<f32>> = l
-                .vertices
-                .as_ref()
-                .ok_or_else(|| Located {
-                    at: pos,
-                    msg: "a polygon needs `vertices`".into(),
-                })?
-                .iter()
-                .map(|&p| v3(p))
-                .collect();
-            Box::new(PolygonLight::<f32, 16>::new(&vs).map_err(&e)?)
         }
-        "line" => Box::new(
-            LineLight::new(v3(need(l.a, k, "a", pos)?), v3(need(l.b, k, "b", pos)?)).map_err(&e)?,
-        ),
+        "sphere" => {
+            let center = vec(&l.center, "center")?;
+            let r = need(&l.radius, &what, "radius", pos)?;
+            let r = in_range("radius", r, |x| x > 0.0, "> 0")?;
+            Box::new(SphereLight::new(center, r as f32).map_err(e)?)
+        }
+        "polygon" => {
+            let vs = need(&l.vertices, &what, "vertices", pos)?;
+            if vs.get_ref().iter().flatten().any(|x| !x.is_finite()) {
+                return Err(at_key(
+                    vs.span(),
+                    "`vertices` has a non-finite number (nan or inf)",
+                ));
+            }
+            if !(3..=MAX_POLYGON).contains(&vs.get_ref().len()) {
+                return Err(at_key(
+                    vs.span(),
+                    format!(
+                        "`vertices` has {} vertices: a polygon light has 3 to {MAX_POLYGON}",
+                        vs.get_ref().len()
+                    ),
+                ));
+            }
+            let vs: Vec<Vec3<f32>> = vs.get_ref().iter().map(|&p| v3(p)).collect();
+            Box::new(PolygonLight::<f32, MAX_POLYGON>::new(&vs).map_err(e)?)
+        }
+        "line" => Box::new(LineLight::new(vec(&l.a, "a")?, vec(&l.b, "b")?).map_err(e)?),
         "parallelogram" => Box::new(
             ParallelogramLight::new(
-                v3(need(l.origin, k, "origin", pos)?),
-                v3(need(l.eu, k, "eu", pos)?),
-                v3(need(l.ev, k, "ev", pos)?),
+                vec(&l.origin, "origin")?,
+                vec(&l.eu, "eu")?,
+                vec(&l.ev, "ev")?,
             )
-            .map_err(&e)?,
+            .map_err(e)?,
         ),
         "sh9" => {
-            let env = match l.environment.as_deref() {
-                Some("grace_cathedral") | None => Environment::GraceCathedral,
-                Some("eucalyptus_grove") => Environment::EucalyptusGrove,
-                Some("st_peters_basilica") => Environment::StPetersBasilica,
-                Some(other) => {
-                    return Err(Located {
-                        at: pos,
-                        msg: format!(
-                            "unknown environment {other:?} (grace_cathedral, eucalyptus_grove, st_peters_basilica)"
-                        ),
-                    })
+            let env = match &l.environment {
+                None => Environment::GraceCathedral,
+                Some(name) => {
+                    let n = name.get_ref().as_str();
+                    match ENVIRONMENTS.iter().find(|(k, _)| *k == n) {
+                        Some((_, env)) => *env,
+                        None => {
+                            let names: Vec<&str> = ENVIRONMENTS.iter().map(|(k, _)| *k).collect();
+                            return Err(at_key(
+                                name.span(),
+                                format!(
+                                    "unknown environment {n:?}{}; environments: {}",
+                                    did_you_mean(n, names.iter().copied()),
+                                    names.join(", ")
+                                ),
+                            ));
+                        }
+                    }
                 }
             };
             Box::new(Sh9::<f32>::environment(env).prepare())
         }
-        "ambient" => Box::new(Ambient(Rgb::splat(1.0f32))),
-        other => {
-            return Err(Located {
-                at: pos,
-                msg: format!(
-                    "unknown light kind {other:?} (directional, point, hemisphere, overcast, sky_ground, cap, sphere, polygon, line, parallelogram, sh9, ambient)"
-                ),
-            })
-        }
+        _ => Box::new(Ambient(Rgb::splat(1.0f32))),
+    };
+    let colour = match &l.colour {
+        Some(c) => finite("colour", c)?,
+        None => [1.0; 3],
     };
     Ok(Box::new(
-        Tinted::new(Lights(vec![light]), Rgb::from_f64(l.colour)).map_err(&e)?,
+        Tinted::new(Lights(vec![light]), Rgb::from_f64(colour)).map_err(e)?,
     ))
 }
 
-fn build_mesh(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<f32>, Located> {
-    let k = m.kind.as_str();
-    let e = at::<RasterError>(pos);
-    match k {
-        "sphere" => scenes::sphere(
-            need(m.radius, k, "radius", pos)?,
-            m.stacks.unwrap_or(16),
-            m.slices.unwrap_or(32),
-        )
-        .map_err(e),
-        "plane" => {
-            let s = need(m.size, k, "size", pos)?;
-            let c = m.cells.unwrap_or([1, 1]);
-            scenes::plane(s[0], s[1], c[0], c[1]).map_err(e)
-        }
-        "box" => scenes::cuboid(need(m.half, k, "half", pos)?).map_err(e),
-        "torus" => {
-            let s = m.segments.unwrap_or([32, 16]);
-            scenes::torus(
-                need(m.major, k, "major", pos)?,
-                need(m.minor, k, "minor", pos)?,
-                s[0],
-                s[1],
-            )
-            .map_err(e)
-        }
-        other => Err(Located {
-            at: pos,
-            msg: format!("unknown mesh kind {other:?} (sphere, plane, box, torus)"),
-        }),
+impl MeshDef {
+    fn present(&self) -> [(&'static str, Option<Range<usize>>); 14] {
+        [
+            ("translate", span_of(&self.translate)),
+            ("rotate", span_of(&self.rotate)),
+            ("scale", span_of(&self.scale)),
+            ("gouraud", span_of(&self.gouraud)),
+            ("two_sided", span_of(&self.two_sided)),
+            ("radius", span_of(&self.radius)),
+            ("stacks", span_of(&self.stacks)),
+            ("slices", span_of(&self.slices)),
+            ("size", span_of(&self.size)),
+            ("cells", span_of(&self.cells)),
+            ("half", span_of(&self.half)),
+            ("major", span_of(&self.major)),
+            ("minor", span_of(&self.minor)),
+            ("segments", span_of(&self.segments)),
+        ]
     }
 }
 
-fn build(file: &File) -> Result<Scene<f32>, Located> {
-    let cam = file.camera.get_ref();
-    let cam_at = file.camera.span().start;
-    let camera = Camera::new(
-        v3(cam.eye),
-        v3(cam.target),
-        v3(cam.up),
+/// A mesh's vertex count `(a + 1)(b + 1)` within 16-bit indices, else an error at `span`.
+fn grid_fits(a: u16, b: u16, keys: &str, span: Range<usize>) -> Result<(), Located> {
+    let n = (a as i64 + 1) * (b as i64 + 1);
+    if n > MAX_MESH_VERTICES {
+        Err(at_key(
+            span,
+            format!("{keys} give {n} vertices: a mesh has at most {MAX_MESH_VERTICES}"),
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+fn build_mesh(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<f32>, Located> {
+    let k = m.kind.get_ref().as_str();
+    let Some((_, keys)) = MESH_KINDS.iter().find(|(n, _)| *n == k) else {
+        let names: Vec<&str> = MESH_KINDS.iter().map(|(n, _)| *n).collect();
+        return Err(at_key(
+            m.kind.span(),
+            format!(
+                "unknown mesh kind {k:?}{}; kinds: {}",
+                did_you_mean(k, names.iter().copied()),
+                names.join(", ")
+            ),
+        ));
+    };
+    let mut allowed = MESH_COMMON.to_vec();
+    allowed.extend_from_slice(keys);
+    only_keys(&m.present(), &allowed, &format!("{k} mesh"))?;
+    let what = format!("{k} mesh");
+    let positive = |key: &str, x: &Option<S<f64>>| -> Result<f64, Located> {
+        in_range(key, need(x, &what, key, pos)?, |x| x > 0.0, "> 0")
+    };
+    let e = |e: RasterError| at(pos, e.to_string());
+    match k {
+        "sphere" => {
+            let r = positive("radius", &m.radius)?;
+            let stacks = match &m.stacks {
+                Some(s) => int_in("stacks", s, 2, 4096, "")?,
+                None => 16,
+            };
+            let slices = match &m.slices {
+                Some(s) => int_in("slices", s, 3, 4096, "")?,
+                None => 32,
+            };
+            let span = span_of(&m.stacks)
+                .or(span_of(&m.slices))
+                .unwrap_or(pos..pos);
+            grid_fits(stacks, slices, "`stacks` and `slices`", span)?;
+            scenes::sphere(r, stacks, slices).map_err(e)
+        }
+        "plane" => {
+            let s = need(&m.size, &what, "size", pos)?;
+            let size = finite("size", s)?;
+            if !size.iter().all(|&x| x > 0.0) {
+                return Err(at_key(
+                    s.span(),
+                    format!(
+                        "`size` = [{}, {}] is out of range: both > 0",
+                        show(size[0]),
+                        show(size[1])
+                    ),
+                ));
+            }
+            let c = match &m.cells {
+                Some(c) => {
+                    let [a, b] = *c.get_ref();
+                    let ok = |x: i64| (1..=4096).contains(&x);
+                    if !(ok(a) && ok(b)) {
+                        return Err(at_key(
+                            c.span(),
+                            format!("`cells` = [{a}, {b}] is out of range: 1 to 4096 each"),
+                        ));
+                    }
+                    grid_fits(a as u16, b as u16, "`cells`", c.span())?;
+                    [a as u16, b as u16]
+                }
+                None => [1, 1],
+            };
+            scenes::plane(size[0], size[1], c[0], c[1]).map_err(e)
+        }
+        "box" => {
+            let h = need(&m.half, &what, "half", pos)?;
+            let half = finite("half", h)?;
+            if !half.iter().all(|&x| x > 0.0) {
+                return Err(at_key(
+                    h.span(),
+                    format!(
+                        "`half` = [{}, {}, {}] is out of range: all three > 0",
+                        show(half[0]),
+                        show(half[1]),
+                        show(half[2])
+                    ),
+                ));
+            }
+            scenes::cuboid(half).map_err(e)
+        }
+        _ => {
+            let major = positive("major", &m.major)?;
+            let minor = need(&m.minor, &what, "minor", pos)?;
+            let minor = in_range(
+                "minor",
+                minor,
+                |x| x > 0.0 && x < major,
+                &format!("> 0 and < `major` ({})", show(major)),
+            )?;
+            let s = match &m.segments {
+                Some(s) => {
+                    let [a, b] = *s.get_ref();
+                    let ok = |x: i64| (3..=4096).contains(&x);
+                    if !(ok(a) && ok(b)) {
+                        return Err(at_key(
+                            s.span(),
+                            format!("`segments` = [{a}, {b}] is out of range: 3 to 4096 each"),
+                        ));
+                    }
+                    grid_fits(a as u16, b as u16, "`segments`", s.span())?;
+                    [a as u16, b as u16]
+                }
+                None => [32, 16],
+            };
+            scenes::torus(major, minor, s[0], s[1]).map_err(e)
+        }
+    }
+}
+
+/// The mesh's transform: scale, then rotate, then translate.
+fn transform(d: &MeshDef) -> Result<Affine<f32>, Located> {
+    let mut xf = Affine::identity();
+    if let Some(s) = &d.scale {
+        let v = finite("scale", s)?;
+        if v.contains(&0.0) {
+            return Err(at_key(
+                s.span(),
+                "`scale` has a zero component: each must be non-zero (negative mirrors)",
+            ));
+        }
+        xf = xf.then(&Affine::scale(v3(v)).map_err(|e| at_key(s.span(), format!("`scale`: {e}")))?);
+    }
+    if let Some(r) = &d.rotate {
+        let [x, y, z, deg] = finite("rotate", r)?;
+        if [x, y, z] == [0.0; 3] {
+            return Err(at_key(
+                r.span(),
+                "`rotate` has a zero axis: [axis x, axis y, axis z, degrees] needs a non-zero axis",
+            ));
+        }
+        xf = xf.then(
+            &Affine::rotation(v3([x, y, z]), (deg as f32).to_radians())
+                .map_err(|e| at_key(r.span(), format!("`rotate`: {e}")))?,
+        );
+    }
+    if let Some(t) = &d.translate {
+        let v = finite("translate", t)?;
+        xf = xf.then(
+            &Affine::translation(v3(v))
+                .map_err(|e| at_key(t.span(), format!("`translate`: {e}")))?,
+        );
+    }
+    Ok(xf)
+}
+
+fn build_camera(cam: &CameraDef, pos: usize) -> Result<Camera<f32>, Located> {
+    let eye = finite("eye", &cam.eye)?;
+    let target = finite("target", &cam.target)?;
+    let up = match &cam.up {
+        Some(u) => finite("up", u)?,
+        None => [0.0, 1.0, 0.0],
+    };
+    let fov = match &cam.fov_deg {
+        Some(f) => in_range(
+            "fov_deg",
+            f,
+            |x| x > 0.0 && x < 180.0,
+            "more than 0 and less than 180 degrees",
+        )?,
+        None => 40.0,
+    };
+    let px = " pixels";
+    let width = int_in("width", &cam.width, 1, MAX_SIDE, px)?;
+    let height = int_in("height", &cam.height, 1, MAX_SIDE, px)?;
+    if eye == target {
+        return Err(at_key(
+            cam.target.span(),
+            "`target` is the same point as `eye` (the camera looks from eye to target)",
+        ));
+    }
+    Camera::new(
+        v3(eye),
+        v3(target),
+        v3(up),
         Projection::Perspective {
-            fov_y: (cam.fov_deg as f32).to_radians(),
+            fov_y: (fov as f32).to_radians(),
         },
-        cam.width,
-        cam.height,
+        width,
+        height,
     )
-    .map_err(at(cam_at))?;
+    .map_err(|e| {
+        use arealight::Error as E;
+        let up_span = cam.up.as_ref().map(|u| u.span());
+        match e {
+            RasterError::Model(E::ZeroLength("up")) => match up_span {
+                Some(s) => at_key(s, "`up` has zero length (it gives the camera's roll)"),
+                None => at(pos, e.to_string()),
+            },
+            RasterError::Model(E::Parallel { .. }) => {
+                let msg = "`up` is parallel to the view direction (target - eye): it cannot give the roll";
+                match up_span {
+                    Some(s) => at_key(s, msg),
+                    None => at_key(cam.target.span(), format!("{msg} (the default up is [0, 1, 0])")),
+                }
+            }
+            RasterError::Model(E::ZeroLength(_)) => at_key(
+                cam.target.span(),
+                "`target` is too close to `eye` (the camera looks from eye to target)",
+            ),
+            other => at(pos, other.to_string()),
+        }
+    })
+}
+
+fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located> {
+    let cam = file.camera.get_ref();
+    let camera = build_camera(cam, file.camera.span().start)?;
     let mut lights = Vec::new();
     for l in &file.light {
         lights.push(build_light(l.get_ref(), l.span().start)?);
     }
     let lights = Lights(lights);
-    let mut materials = Vec::new();
+    let mut materials: Vec<(String, Material<f32>)> = Vec::new();
     for m in &file.material {
         let d = m.get_ref();
-        let mat = Material::new(
-            Rgb::from_f64(d.diffuse),
-            Rgb::from_f64(d.specular),
-            d.exponent,
-        )
-        .map_err(at(m.span().start))?;
-        materials.push((d.name.clone(), mat));
+        let name = d.name.get_ref();
+        if materials.iter().any(|(n, _)| n == name) {
+            return Err(at_key(
+                d.name.span(),
+                format!("a second material named {name:?} (names must be unique)"),
+            ));
+        }
+        let diffuse = finite("diffuse", &d.diffuse)?;
+        let specular = match &d.specular {
+            Some(s) => finite("specular", s)?,
+            None => [0.0; 3],
+        };
+        let exponent = match &d.exponent {
+            Some(x) => {
+                let m = *x.get_ref();
+                if !(0..=MAX_EXPONENT).contains(&m) {
+                    return Err(at_key(
+                        x.span(),
+                        format!(
+                            "`exponent` = {m} is out of range: 0 to {MAX_EXPONENT} (the library's largest Phong exponent; a specular sample costs O(exponent))"
+                        ),
+                    ));
+                }
+                if m > SLOW_EXPONENT {
+                    warnings.push(at_key(
+                        x.span(),
+                        format!(
+                            "`exponent` = {m} makes rendering slow: a specular sample costs O(exponent), about {} times the cost at {SLOW_EXPONENT} (the library accepts up to {MAX_EXPONENT})",
+                            m / SLOW_EXPONENT),
+                    ));
+                }
+                m as u32
+            }
+            None => 1,
+        };
+        let mat = Material::new(Rgb::from_f64(diffuse), Rgb::from_f64(specular), exponent)
+            .map_err(|e| at(m.span().start, e.to_string()))?;
+        materials.push((name.clone(), mat));
     }
     let mut objects = Vec::new();
     for m in &file.mesh {
         let (d, pos) = (m.get_ref(), m.span().start);
         let name = d.material.get_ref();
         let Some((_, mat)) = materials.iter().find(|(n, _)| n == name) else {
-            return Err(Located {
-                at: d.material.span().start,
-                msg: format!("no material named {name:?}"),
-            });
+            let names: Vec<&str> = materials.iter().map(|(n, _)| n.as_str()).collect();
+            let hint = closest(name, names.iter().copied())
+                .map_or(String::new(), |c| format!(" (did you mean {c:?}?)"));
+            return Err(at_key(
+                d.material.span(),
+                format!(
+                    "no material named {name:?}{hint}; the file's materials: {}",
+                    if names.is_empty() {
+                        "none (add a [[material]])".to_owned()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
+            ));
         };
-        let mut xf = Affine::identity();
-        if let Some(s) = d.scale {
-            xf = xf.then(&Affine::scale(v3(s)).map_err(at(pos))?);
-        }
-        if let Some(r) = d.rotate {
-            xf = xf.then(
-                &Affine::rotation(v3([r[0], r[1], r[2]]), (r[3] as f32).to_radians())
-                    .map_err(at(pos))?,
-            );
-        }
-        xf = xf.then(&Affine::translation(v3(d.translate)).map_err(at(pos))?);
+        let mesh = build_mesh(d, pos)?;
+        let xf = transform(d)?;
         objects.push(Object {
-            shading: if d.gouraud {
+            shading: if d.gouraud.as_ref().is_some_and(|g| *g.get_ref()) {
                 Shading::Gouraud
             } else {
                 Shading::PerPixel
             },
-            two_sided: d.two_sided,
-            ..Object::new(build_mesh(d, pos)?, xf, Surface::Lit(*mat))
+            two_sided: d.two_sided.as_ref().is_some_and(|t| *t.get_ref()),
+            ..Object::new(mesh, xf, Surface::Lit(*mat))
         });
     }
-    let exposure = match cam.exposure {
-        Some(x) => x as f32,
+    let exposure = match &cam.exposure {
+        Some(x) => in_range("exposure", x, |x| x > 0.0, "> 0")? as f32,
         None => scenes::exposure_at(&lights, v3([0.0; 3]), v3([0.0, 1.0, 0.0])),
+    };
+    let background = match &cam.background {
+        Some(b) => {
+            let [r, g, bl] = *b.get_ref();
+            if ![r, g, bl].iter().all(|c| (0..=255).contains(c)) {
+                return Err(at_key(
+                    b.span(),
+                    format!(
+                        "`background` = [{r}, {g}, {bl}] is out of range: 0 to 255 each (sRGB)"
+                    ),
+                ));
+            }
+            [r as u8, g as u8, bl as u8]
+        }
+        None => [0; 3],
     };
     Ok(Scene {
         camera,
         objects,
         lights,
         exposure,
-        background: cam.background,
+        background,
         encoding: arealight::raster::Encoding::Srgb,
     })
+}
+
+/// A TOML error's message with a suggestion for an unknown key: serde's "unknown field `x`,
+/// expected one of `a`, `b`" gains "(did you mean `a`?)".
+fn toml_message(msg: &str) -> String {
+    let msg = msg.trim();
+    let Some(rest) = msg.strip_prefix("unknown field `") else {
+        return msg.to_owned();
+    };
+    let Some((field, expected)) = rest.split_once('`') else {
+        return msg.to_owned();
+    };
+    let candidates: Vec<&str> = expected.split('`').skip(1).step_by(2).collect();
+    match closest(field, candidates.iter().copied()) {
+        Some(c) => format!("unknown key `{field}` (did you mean `{c}`?){expected}"),
+        None => format!("unknown key `{field}`{expected}"),
+    }
+}
+
+/// A parsed scene and its warnings (`name:line:column: warning: ...`).
+pub struct Parsed {
+    /// The scene.
+    pub scene: Scene<f32>,
+    /// Warnings (the scene renders, perhaps slowly).
+    pub warnings: Vec<String>,
 }
 
 /// Parses and builds the scene in `src` (named `name` in messages).
 ///
 /// # Errors
-/// `name:line:column: message` for a syntax error, an unknown or mistyped key, or a value the
-/// library refuses.
-pub fn parse(name: &str, src: &str) -> Result<Scene<f32>, String> {
+/// `name:line:column: message` for a syntax error, an unknown or mistyped key, a value out of
+/// range, or a value the library refuses.
+pub fn parse(name: &str, src: &str) -> Result<Parsed, String> {
     let located = |l: Located| {
-        let (line, col) = line_col(src, l.at);
+        let (line, col) = line_col(src, resolve(src, &l));
         format!("{name}:{line}:{col}: {}", l.msg)
     };
     let file: File = toml::from_str(src).map_err(|e| {
         let at = e.span().map_or(0, |s| s.start);
         located(Located {
             at,
-            msg: e.message().trim().to_string(),
+            key: false,
+            msg: toml_message(e.message()),
         })
     })?;
-    build(&file).map_err(located)
+    let mut warnings = Vec::new();
+    let scene = build(&file, &mut warnings).map_err(located)?;
+    let warnings = warnings
+        .into_iter()
+        .map(|w| {
+            let (line, col) = line_col(src, resolve(src, &w));
+            format!("{name}:{line}:{col}: warning: {}", w.msg)
+        })
+        .collect();
+    Ok(Parsed { scene, warnings })
 }
 
-/// Renders the scene file `path` into `out/<file stem>.png`.
+/// Renders the scene file `path` into `out/<file stem>.png`; warnings go to standard error.
 ///
 /// # Errors
 /// A message for an unreadable or bad file, or a PNG that cannot be written.
 pub fn render_file(path: &Path, out: &Path) -> Result<PathBuf, String> {
     let src = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let scene = parse(&path.display().to_string(), &src)?;
+    let Parsed { scene, warnings } = parse(&path.display().to_string(), &src)?;
+    for w in &warnings {
+        eprintln!("{w}");
+    }
     let stem = path
         .file_stem()
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-    let p = scenes::panel(&scene, &format!("{stem} (f32, per-pixel)"))
+    let gouraud = scene
+        .objects
+        .iter()
+        .filter(|o| o.shading == Shading::Gouraud)
+        .count();
+    let shading = match gouraud {
+        0 => "per pixel",
+        g if g == scene.objects.len() => "Gouraud",
+        _ => "per pixel and Gouraud",
+    };
+    let p = scenes::panel(&scene, &format!("{stem} (f32, {shading})"))
         .map_err(|e| format!("{}: {e}", path.display()))?;
     let pix = figure::sheet(&format!("scene file {}", path.display()), &[p], 1, "");
     figure::save(&pix, out, &format!("{stem}.png"))
@@ -399,44 +981,160 @@ mod tests {
 
     const EXAMPLE: &str = include_str!("../scenes/example.toml");
 
+    /// The camera lines 1 to 5 of every test file.
+    const CAMERA: &str = "[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 10\nheight = 10\n";
+
+    fn err(src: &str) -> String {
+        parse("bad.toml", src).err().unwrap_or_default()
+    }
+
     #[test]
     fn the_example_scene_builds() {
         let s = parse("example.toml", EXAMPLE).unwrap();
+        assert!(s.warnings.is_empty());
+        let s = s.scene;
         assert_eq!(s.objects.len(), 4);
         assert_eq!(s.lights.0.len(), 2);
         assert_eq!((s.camera.width(), s.camera.height()), (320, 240));
     }
 
     #[test]
+    fn the_documented_example_builds() {
+        let doc = include_str!("../../docs/scene-format.md");
+        let start = doc.find("```toml\n").expect("a toml block") + 8;
+        let end = start + doc[start..].find("```").unwrap();
+        let s = parse("scene-format.md", &doc[start..end]).unwrap();
+        assert!(s.warnings.is_empty());
+        assert!(!s.scene.objects.is_empty());
+    }
+
+    #[test]
     fn errors_name_line_and_column() {
         // A syntax error: the missing value on line 3.
-        let err = |src: &str| parse("bad.toml", src).err().unwrap_or_default();
         let e = err("[camera]\neye = [0, 1, 5]\ntarget = \n");
         assert!(e.starts_with("bad.toml:3:"), "{e}");
-        // An unknown key.
-        let src =
-            "[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 10\nheight = 10\nzoom = 2\n";
-        let e = err(src);
-        assert!(e.starts_with("bad.toml:6:1:") && e.contains("zoom"), "{e}");
-        // A library refusal at its entry (the [[light]] header, line 7): radius 0.
-        let src = "[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 10\nheight = 10\n\n[[light]]\nkind = \"sphere\"\ncenter = [0, 3, 0]\nradius = 0.0\n";
-        let e = err(src);
+        // An unknown key, with a suggestion.
+        let e = err(&format!("{CAMERA}fov = 2\n"));
         assert!(
-            e.starts_with("bad.toml:7:1:") && e.contains("radius"),
+            e.starts_with("bad.toml:6:1:") && e.contains("did you mean `fov_deg`?"),
             "{e}"
         );
-        // A mesh naming a missing material: at the name.
-        let src = "[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 10\nheight = 10\n\n[[mesh]]\nkind = \"box\"\nhalf = [1, 1, 1]\nmaterial = \"gold\"\n";
-        let e = err(src);
+        // A library refusal at its key: radius 0 on line 10.
+        let e = err(&format!(
+            "{CAMERA}\n[[light]]\nkind = \"sphere\"\ncenter = [0, 3, 0]\nradius = -1.0\n"
+        ));
+        assert_eq!(e, "bad.toml:10:1: `radius` = -1 is out of range: > 0");
+        // A mesh naming a missing material: at the name, with a suggestion.
+        let e = err(&format!(
+            "{CAMERA}\n[[material]]\nname = \"gold\"\ndiffuse = [1, 1, 0]\n\n[[mesh]]\nkind = \"box\"\nhalf = [1, 1, 1]\nmaterial = \"glod\"\n"
+        ));
         assert!(
-            e.starts_with("bad.toml:10:12:") && e.contains("gold"),
+            e.starts_with("bad.toml:14:1:") && e.contains("did you mean \"gold\"?"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn camera_errors_are_at_their_keys_with_the_range() {
+        let e = err("[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 0\nheight = 10\n");
+        assert_eq!(
+            e,
+            "bad.toml:4:1: `width` = 0 is out of range: 1 to 4096 pixels"
+        );
+        let e =
+            err("[camera]\neye = [0, 1, 5]\ntarget = [0, 0, 0]\nwidth = 65535\nheight = 65535\n");
+        assert_eq!(
+            e,
+            "bad.toml:4:1: `width` = 65535 is out of range: 1 to 4096 pixels"
+        );
+        let e = err(&format!("{CAMERA}fov_deg = 180\n"));
+        assert_eq!(
+            e,
+            "bad.toml:6:1: `fov_deg` = 180 is out of range: more than 0 and less than 180 degrees"
+        );
+        let e = err(&format!("{CAMERA}up = [0, 2, 10]\n"));
+        assert!(e.starts_with("bad.toml:6:1: `up` is parallel"), "{e}");
+        let e = err(&format!("{CAMERA}background = [0, 300, 0]\n"));
+        assert!(e.starts_with("bad.toml:6:1: `background`"), "{e}");
+    }
+
+    #[test]
+    fn light_and_mesh_errors_are_at_their_keys() {
+        let light = |body: &str| err(&format!("{CAMERA}\n[[light]]\n{body}"));
+        let e = light("kind = \"sphre\"\n");
+        assert!(
+            e.starts_with("bad.toml:8:1: unknown light kind \"sphre\" (did you mean sphere?)"),
+            "{e}"
+        );
+        let e = light("kind = \"cap\"\naxis = [0, 1, 0]\nsigma_deg = 95\n");
+        assert_eq!(
+            e,
+            "bad.toml:10:1: `sigma_deg` = 95 is out of range: 0 to 90 degrees"
+        );
+        let e = light("kind = \"directional\"\ndirection = [0, 0, 0]\n");
+        assert!(
+            e.starts_with("bad.toml:9:1: `direction` has zero length"),
+            "{e}"
+        );
+        let e = light("kind = \"polygon\"\nvertices = [[0, 1, 0], [1, 1, 0], [2, 1, 0]]\n");
+        assert!(
+            e.starts_with("bad.toml:9:1: `vertices`: polygon has zero area"),
+            "{e}"
+        );
+        let e =
+            light("kind = \"polygon\"\nradius = 2\nvertices = [[0, 1, 0], [1, 1, 0], [1, 1, 1]]\n");
+        assert!(
+            e.starts_with("bad.toml:9:1: `radius` is not a key of a polygon light"),
+            "{e}"
+        );
+        let mesh = |body: &str| {
+            err(&format!(
+                "{CAMERA}\n[[material]]\nname = \"m\"\ndiffuse = [1, 1, 1]\n\n[[mesh]]\nmaterial = \"m\"\n{body}"
+            ))
+        };
+        let e = mesh("kind = \"torus\"\nmajor = 1\nminor = 2\n");
+        assert_eq!(
+            e,
+            "bad.toml:15:1: `minor` = 2 is out of range: > 0 and < `major` (1)"
+        );
+        let e = mesh("kind = \"sphere\"\nradius = 1\nstacks = 1\n");
+        assert_eq!(e, "bad.toml:15:1: `stacks` = 1 is out of range: 2 to 4096");
+        let e = mesh("kind = \"sphere\"\nradius = 1\nstacks = 400\nslices = 400\n");
+        assert!(
+            e.starts_with("bad.toml:15:1: `stacks` and `slices` give 160801 vertices"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn exponents_state_the_limit_and_warn_when_slow() {
+        let mat = |m: &str| {
+            parse(
+                "x.toml",
+                &format!(
+                    "{CAMERA}\n[[material]]\nname = \"m\"\ndiffuse = [1, 1, 1]\nexponent = {m}\n"
+                ),
+            )
+        };
+        let e = mat("2000000").err().unwrap();
+        assert!(
+            e.starts_with("x.toml:10:1: `exponent` = 2000000 is out of range: 0 to 1048576"),
+            "{e}"
+        );
+        let w = mat("100000").ok().unwrap().warnings;
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].starts_with("x.toml:10:1: warning: `exponent` = 100000"),
+            "{w:?}"
+        );
+        assert!(mat("1000").ok().unwrap().warnings.is_empty());
     }
 
     #[test]
     fn line_col_counts_from_one() {
         assert_eq!(line_col("ab\ncd", 0), (1, 1));
         assert_eq!(line_col("ab\ncd", 4), (2, 2));
+        let src = "[camera]\n  width =   0\n";
+        assert_eq!(key_start(src, src.find('0').unwrap()), 11);
     }
 }

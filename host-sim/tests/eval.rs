@@ -5,8 +5,9 @@ use std::process::{Command, Stdio};
 
 use serde_json::{json, Value};
 
-/// Runs `host-sim eval --backend <backend>` on `input`; returns stdout's lines and the exit code.
-fn run_raw(backend: &str, input: &str) -> (Vec<String>, i32) {
+/// Runs `host-sim eval --backend <backend>` on `input`; returns stdout's lines, the exit code
+/// and stderr.
+fn run_full(backend: &str, input: &str) -> (Vec<String>, i32, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
         .args(["eval", "--backend", backend])
         .stdin(Stdio::piped())
@@ -22,15 +23,29 @@ fn run_raw(backend: &str, input: &str) -> (Vec<String>, i32) {
     let out = child.wait_with_output().unwrap();
     writer.join().unwrap();
     let stdout = String::from_utf8(out.stdout).unwrap();
-    assert!(
-        out.stderr.is_empty(),
-        "stderr: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let stderr = String::from_utf8(out.stderr).unwrap();
     (
         stdout.lines().map(str::to_owned).collect(),
         out.status.code().unwrap_or(-1),
+        stderr,
     )
+}
+
+/// [`run_full`], asserting that stderr is empty or the one summary line of a run with error
+/// lines.
+fn run_raw(backend: &str, input: &str) -> (Vec<String>, i32) {
+    let (out, code, stderr) = run_full(backend, input);
+    let errors = out.iter().filter(|l| l.contains("\"error\":")).count();
+    if errors == 0 {
+        assert!(stderr.is_empty(), "stderr: {stderr}");
+    } else {
+        assert_eq!(stderr.lines().count(), 1, "stderr: {stderr}");
+        assert!(
+            stderr.starts_with(&format!("host-sim eval: {errors} of {} lines", out.len())),
+            "stderr: {stderr}"
+        );
+    }
+    (out, code)
 }
 
 /// Runs the lines (as JSON values) and parses the answers; asserts exit code 0.
@@ -431,13 +446,56 @@ fn bad_json_gets_null_id_and_the_run_goes_on() {
     let (out, code) = run_raw("f64", input);
     assert_eq!(code, 0);
     assert_eq!(out.len(), 5);
-    for l in &out[..4] {
+    for (k, l) in out[..4].iter().enumerate() {
         let v: Value = serde_json::from_str(l).unwrap();
-        assert_eq!(v["id"], Value::Null, "{l}");
-        assert!(v["error"].is_string(), "{l}");
+        // The truncated line 2 still shows its id.
+        let id = if k == 1 { json!("x") } else { Value::Null };
+        assert_eq!(v["id"], id, "{l}");
+        assert!(
+            error_of(&v).starts_with(&format!("input line {}: ", k + 1)),
+            "{l}"
+        );
     }
     let v: Value = serde_json::from_str(&out[4]).unwrap();
     assert_eq!(v, json!({"id": "ok", "value": 1.0}));
+}
+
+#[test]
+fn a_truncated_line_gives_its_line_number_and_id() {
+    // Blank lines count: the truncated line is line 4 of the input.
+    let input = "{\"id\":\"a\",\"model\":\"hemi_const\",\"n\":[0,0,1],\"axis\":[0,0,1]}\n\n   \n{\"id\":\"c\",\"model\":\"cap_lambert\",\"n\":[0,0,1]\n";
+    let (out, code, stderr) = run_full("f64", input);
+    assert_eq!(code, 0);
+    assert_eq!(out.len(), 2);
+    let v: Value = serde_json::from_str(&out[1]).unwrap();
+    assert_eq!(
+        v,
+        json!({"id": "c", "error": "input line 4: invalid JSON: EOF while parsing an object at column 43"})
+    );
+    assert_eq!(
+        stderr,
+        "host-sim eval: 1 of 2 lines answered with an error (the first is input line 4); exit status 0\n"
+    );
+}
+
+#[test]
+fn failing_lines_keep_exit_status_0_and_print_one_summary_line() {
+    // The protocol: "the run goes on with the next line and exits 0".
+    let input = "{\"id\":1,\"model\":\"hemi_const\",\"n\":[0,0,1],\"axis\":[0,0,1]}\n\
+                 {\"id\":2,\"model\":\"hemi_const\",\"n\":[0,0,0],\"axis\":[0,0,1]}\n\
+                 {\"id\":3,\"model\":\"nope\"}\n\
+                 {\"id\":4,\"model\":\"hemi_cos\",\"n\":[0,0,1],\"axis\":[0,0,1]}\n";
+    let (out, code, stderr) = run_full("f32", input);
+    assert_eq!(code, 0);
+    assert_eq!(out.len(), 4);
+    assert!(out[3].contains("\"value\""), "{}", out[3]);
+    assert_eq!(
+        stderr,
+        "host-sim eval: 2 of 4 lines answered with an error (the first is input line 2); exit status 0\n"
+    );
+    // No error line: nothing on stderr.
+    let (_, code, stderr) = run_full("f32", input.lines().next().unwrap());
+    assert_eq!((code, stderr.as_str()), (0, ""));
 }
 
 #[test]
@@ -448,14 +506,247 @@ fn missing_parameter_echoes_the_id() {
             json!({"id": "no-sigma", "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1]}),
             json!({"id": "no-model", "n": [0, 0, 1]}),
             json!({"id": 42, "model": "phong_polygon", "p": [0, 0, 0], "r": [0, 0, 1], "verts": square()}),
+            json!({"id": 43, "model": "phong_polygon", "p": [0, 0, 0]}),
         ],
     );
     assert_eq!(out[0]["id"], "no-sigma");
-    assert_eq!(error_of(&out[0]), "missing parameter: sigma");
+    assert_eq!(
+        error_of(&out[0]),
+        "missing parameter: sigma (cap_lambert takes n, axis, sigma)"
+    );
     assert_eq!(out[1]["id"], "no-model");
     assert_eq!(error_of(&out[1]), "missing parameter: model");
     assert_eq!(out[2]["id"], 42);
-    assert_eq!(error_of(&out[2]), "missing parameter: m");
+    assert_eq!(
+        error_of(&out[2]),
+        "missing parameter: m (phong_polygon takes p, r, verts, m)"
+    );
+    // All the missing ones at once.
+    assert_eq!(
+        error_of(&out[3]),
+        "missing parameters: r, verts, m (phong_polygon takes p, r, verts, m)"
+    );
+}
+
+#[test]
+fn unknown_keys_are_answered_and_reported_on_stderr() {
+    // The protocol does not forbid other keys: the value is answered as without them, and
+    // standard error names them (with a suggestion); a misspelt parameter is missing, and
+    // the error says what the unknown key may have meant.
+    let lines = [
+        json!({"id": 1, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3, "sigmaa": 1}),
+        json!({"id": 2, "model": "hemi_cos", "n": [0, 0, 1], "axis": [0, 0, 1], "comment": "x"}),
+        json!({"id": 3, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigmaa": 0.3}),
+    ];
+    let input: String = lines.iter().map(|l| format!("{l}\n")).collect();
+    let (out, code, stderr) = run_full("f64", &input);
+    assert_eq!(code, 0);
+    let clean = run("f64", &[json!({"id": 1, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3})]);
+    let first: serde_json::Value = serde_json::from_str(&out[0]).unwrap();
+    assert_eq!(first["value"], clean[0]["value"]);
+    let second: serde_json::Value = serde_json::from_str(&out[1]).unwrap();
+    assert!(second["value"].is_number(), "{second}");
+    let third: serde_json::Value = serde_json::from_str(&out[2]).unwrap();
+    assert_eq!(
+        third["error"],
+        "missing parameter: sigma (cap_lambert takes n, axis, sigma); unknown: sigmaa (did you mean sigma?)"
+    );
+    let warnings: Vec<&str> = stderr.lines().filter(|l| l.contains("ignored")).collect();
+    assert_eq!(
+        warnings,
+        [
+            "host-sim eval: input line 1: unknown parameter for cap_lambert, ignored: sigmaa (did you mean sigma?); cap_lambert takes n, axis, sigma",
+            "host-sim eval: input line 2: unknown parameter for hemi_cos, ignored: comment; hemi_cos takes n, axis",
+        ]
+    );
+}
+
+#[test]
+fn finite_numbers_beyond_f32_do_not_fit_f32() {
+    let line = json!({"id": "big", "model": "hemi_const", "n": [1e308, 0, 1], "axis": [0, 0, 1]});
+    for backend in ["f32", "f32-fast"] {
+        assert_eq!(
+            error_of(&one(backend, line.clone())),
+            "n: 1e308 does not fit f32 (largest finite f32: 3.4028235e38)"
+        );
+    }
+    // f64 holds it (the normal, normalized, is +x: (1 + n.axis)/2 = 1/2).
+    assert_eq!(one("f64", line)["value"], json!(0.5));
+    // A non-finite input is still "not finite".
+    let nan = json!({"id": "nan", "model": "hemi_cos", "n": ["NaN", 0, 1], "axis": [0, 0, 1]});
+    assert!(error_of(&one("f32", nan)).contains("n is not finite"));
+}
+
+/// Every model id of the protocol and its parameters, in the protocol's order (from the
+/// protocol's table).
+const PROTOCOL: &[(&str, &[&str])] = &[
+    ("hemi_const", &["n", "axis"]),
+    ("hemi_cos", &["n", "axis"]),
+    ("sky_overcast", &["n", "zenith", "c"]),
+    ("sky_ground", &["n", "up", "sky", "ground"]),
+    ("cap_lambert", &["n", "axis", "sigma"]),
+    ("cap_lambert_hermite", &["n", "axis", "sigma"]),
+    ("sphere_lambert", &["p", "n", "center", "radius"]),
+    ("sphere_lambert_hermite", &["p", "n", "center", "radius"]),
+    ("polygon_lambert", &["p", "n", "verts"]),
+    ("line_lambert", &["p", "n", "a", "b", "k"]),
+    ("phong_hemi_const", &["r", "axis", "m"]),
+    ("phong_hemi_cos", &["r", "axis", "m"]),
+    ("phong_cap", &["r", "axis", "sigma", "m"]),
+    ("phong_sphere", &["p", "r", "center", "radius", "m"]),
+    ("phong_polygon", &["p", "r", "verts", "m"]),
+    ("line_phong_peak", &["p", "r", "a", "b", "m"]),
+    ("rect_phong_peak", &["p", "r", "origin", "eu", "ev", "m"]),
+    ("axial_moment", &["p", "verts", "w", "m"]),
+    ("double_axis_moment", &["p", "verts", "w", "v", "m"]),
+    ("directional_luminaire", &["p", "n", "verts", "axis", "m"]),
+    ("glossy_reflection", &["p", "n", "e", "verts", "m"]),
+    ("glossy_transmission", &["p", "n", "e", "verts", "m"]),
+    ("lune_normalization", &["w", "v", "m"]),
+    ("sh9_irradiance", &["n", "coeffs"]),
+    ("sh9_disc_irradiance", &["n", "axis", "alpha"]),
+    ("superellipse_shape", &["pos", "a", "b", "A", "B", "d"]),
+    (
+        "distance_falloff",
+        &[
+            "z",
+            "M",
+            "d0",
+            "alpha",
+            "znear",
+            "zfar",
+            "near_edge",
+            "far_edge",
+        ],
+    ),
+];
+
+fn list_models() -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["eval", "--list-models"])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(out.stderr.is_empty());
+    String::from_utf8(out.stdout).unwrap()
+}
+
+#[test]
+fn list_models_covers_every_protocol_id_with_its_parameters() {
+    let text = list_models();
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains(": "))
+        .filter(|l| {
+            PROTOCOL
+                .iter()
+                .any(|(id, _)| l.starts_with(&format!("{id} ")))
+        })
+        .collect();
+    assert_eq!(rows.len(), PROTOCOL.len(), "{text}");
+    for (id, params) in PROTOCOL {
+        let row = rows
+            .iter()
+            .find(|l| l.split_whitespace().next() == Some(id))
+            .unwrap_or_else(|| panic!("{id} missing from --list-models:\n{text}"));
+        // The parameters, in order, as `name: type`.
+        const TYPES: &[&str] = &[
+            "point",
+            "direction",
+            "vector",
+            "rgb",
+            "polygon",
+            "sh9",
+            "number",
+            "integer",
+        ];
+        let names: Vec<&str> = row
+            .split(", ")
+            .filter_map(|chunk| {
+                let (name, ty) = chunk.split_once(": ")?;
+                let ty = ty.split([' ', ',']).next()?;
+                TYPES
+                    .contains(&ty)
+                    .then(|| name.rsplit(' ').next().unwrap())
+            })
+            .collect();
+        assert_eq!(&names, params, "{row}");
+        let rgb = matches!(*id, "sky_ground" | "sh9_irradiance");
+        assert_eq!(
+            row.split_whitespace().nth(1),
+            Some(if rgb { "rgb" } else { "value" })
+        );
+        let fixed = FIXED_MODELS.contains(id);
+        assert_eq!(
+            row.split_whitespace().nth(2),
+            Some(if fixed { "yes" } else { "no" })
+        );
+    }
+    // Every line the valid cases use answers: the table and the dispatch agree.
+    let ids: Vec<String> = valid_cases()
+        .iter()
+        .map(|c| c["model"].as_str().unwrap().to_owned())
+        .collect();
+    for (id, _) in PROTOCOL {
+        assert!(ids.iter().any(|i| i == id), "{id} has no valid case");
+    }
+}
+
+#[test]
+fn the_docs_cover_every_model() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/");
+    for doc in ["models.md", "eval-protocol.md"] {
+        let text = std::fs::read_to_string(format!("{root}{doc}")).unwrap();
+        for (id, params) in PROTOCOL {
+            assert!(
+                text.contains(&format!("`{id}`")),
+                "{doc} does not name {id}"
+            );
+            if doc == "models.md" {
+                for p in *params {
+                    assert!(text.contains(&format!("`{p}`")), "{doc}: {id}'s {p}");
+                }
+            }
+        }
+        assert!(
+            !text.contains("shared/spec"),
+            "{doc} points outside the repository"
+        );
+    }
+}
+
+#[test]
+fn unknown_models_suggest_the_nearest_id() {
+    for backend in ["f64", "fixed"] {
+        let out = one(
+            backend,
+            json!({"id": "u", "model": "cap_lambrt", "n": [0, 0, 1]}),
+        );
+        assert_eq!(
+            error_of(&out),
+            "unknown model: cap_lambrt (did you mean cap_lambert?); `host-sim eval --list-models` lists them"
+        );
+    }
+    let out = one("f64", json!({"id": "u", "model": "sphere_lambert_hermit"}));
+    assert!(
+        error_of(&out).contains("did you mean sphere_lambert_hermite?"),
+        "{out}"
+    );
+}
+
+#[test]
+fn help_has_no_rustdoc_syntax() {
+    for args in [&["eval", "--help"][..], &["--help"], &["render", "--help"]] {
+        let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(!text.contains("[`"), "{args:?}: {text}");
+        assert!(!text.contains("shared/spec"), "{args:?}: {text}");
+    }
 }
 
 const NOT_YET: [&str; 0] = [];
@@ -519,7 +810,7 @@ fn fixed_backend_answers_its_models_within_1_1024_and_refuses_the_others() {
                 "verts": [[-1, -1, 5], [1, -1, 5], [1, 1, 5]]}),
          "verts is outside the coordinate range of the scalar type (|x| <= 4 for the fixed-point type)"),
         (json!({"id": 4, "model": "phong_cap", "r": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3, "m": 256}),
-         "Phong exponent m is too large"),
+         "Phong exponent m is too large: 256 > 255, the largest this backend accepts"),
     ];
     for (line, want) in bad {
         assert_eq!(error_of(&one("fixed", line)), want);
@@ -686,7 +977,10 @@ fn shaping_models_validate() {
     }
     let mut missing = shape_line(18, on_axis.clone(), "d", json!(1));
     missing.as_object_mut().unwrap().remove("d");
-    assert_eq!(error_of(&one("f64", missing)), "missing parameter: d");
+    assert_eq!(
+        error_of(&one("f64", missing)),
+        "missing parameter: d (superellipse_shape takes pos, a, b, A, B, d)"
+    );
 
     // Values the spec pins down exactly.
     let open = |id: u32, z: f64| {

@@ -65,7 +65,7 @@ use super::Real;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 use fixed::types::I10F22;
 
-/// The model ids of `models.md` that the fixed-point path supports within 1/1024 (the
+/// The model ids of `docs/models.md` that the fixed-point path supports within 1/1024 (the
 /// README's fixed-point table): the eval protocol's `--backend fixed` answers these and
 /// "unsupported" for the others. The other models compile for `Fixed22` too, untested.
 pub const SUPPORTED_MODELS: [&str; 16] = [
