@@ -1,5 +1,5 @@
 //! The host reference for `boards/rp2040-emu`: renders frames 0..N of the scene exactly as the
-//! RP2040 firmware does (`Fixed22`, Gouraud shading, 240x16 bands, one `Demo` for all frames in
+//! RP2040 firmware does (`Fixed22`, Gouraud shading, 240x16 bands (a frame does not depend on the band height), one `Demo` for all frames in
 //! order) and writes each as `frame_NNN.rgb565`: the bytes the ST7789 receives, big-endian
 //! RGB565 in display order (240x240x2 bytes), to compare byte for byte with the frames the
 //! emulated firmware sends.

@@ -100,7 +100,7 @@ const LAMP_HEIGHT: f64 = 0.75;
 /// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
 /// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
 /// [`PreparedVertex`] per vertex) and the encoding table. About
-/// 65 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
+/// 60 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
 /// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
@@ -465,7 +465,7 @@ impl<'a, T: Real> Demo<'a, T> {
 }
 
 /// The shaded vertex colours of one frame, as one core hands them to another (see
-/// [`Demo::shade_share`]): 9 KiB.
+/// [`Demo::shade_share`]): 7 KiB.
 #[derive(Clone, Debug)]
 pub struct ColourExchange {
     sphere: [VertexColour; SPHERE_VERTICES],

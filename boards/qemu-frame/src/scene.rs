@@ -21,7 +21,7 @@ pub const MODES: [(&str, [Shading; 2]); 3] = [
     ("per_pixel", [Shading::PerPixel, Shading::PerPixel]),
 ];
 
-/// The storage a [`Demo`] borrows: the meshes and their per-frame data (about 77 KiB in
+/// The storage a [`Demo`] borrows: the meshes and their per-frame data (about 60 KiB in
 /// `f32`). The firmware keeps it in a `static` with the constant initializer `Storage::new()`.
 pub type Storage = MeshBuffers<f32>;
 

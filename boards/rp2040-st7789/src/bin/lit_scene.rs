@@ -159,9 +159,9 @@ fn run() -> ! {
 
     // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
     //    UV sphere and a torus), their per-frame vertex data and the gamma table (about
-    //    85 KiB) live in a static buffer, filled once; the camera, materials and draw options
+    //    60 KiB) live in a static buffer, filled once; the camera, materials and draw options
     //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
-    //    stack, which 85 KiB would overflow on the second core's firmware); `take` hands out
+    //    stack, which 60 KiB would overflow on the second core's firmware); `take` hands out
     //    its `&'static mut` once.
     let buffers = BUFFERS.take();
     let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
@@ -174,7 +174,7 @@ fn run() -> ! {
 
     // 11. The animation: frame n shows phase n / PERIOD. `render_frame` does the whole frame
     //     (the lights, every vertex transformed and shaded once, then the bands, each sent
-    //     as soon as it is drawn: one address window, then the pixels, `Band::flush_to`) and
+    //     as soon as it is drawn: `BandSender::send`, by DMA, while the next is drawn) and
     //     times its stages with the 1 MHz timer.
     let mut n: u32 = 0;
     loop {

@@ -67,14 +67,14 @@ const SHADING: Shading = Shading::Gouraud;
 /// The bands of a frame (15 of 16 rows).
 const BANDS: u16 = HEIGHT.div_ceil(BAND_ROWS);
 
-/// Each core's meshes, per-frame vertex data and gamma table (about 70 KiB each), initialized
+/// Each core's meshes, per-frame vertex data and gamma table (about 60 KiB each), initialized
 /// at link time (all zeros: no copy through a stack).
 static CORE0_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
     ConstStaticCell::new(MeshBuffers::new());
 static CORE1_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
     ConstStaticCell::new(MeshBuffers::new());
 
-/// Core 1's stack, in words: 16 KiB (the meshes, caches and bands are statics; the stack holds
+/// Core 1's stack, in words: 16 KiB (the meshes, per-frame data and bands are statics; the stack holds
 /// the rasterizer's clipping buffers, a frame's lights and the light models' locals).
 static CORE1_STACK: Stack<4096> = Stack::new();
 
@@ -250,7 +250,7 @@ fn run() -> ! {
     let dma_buffer = singleton!(: DmaBuffer = [0; BAND_PIXELS]).unwrap();
     let mut display = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
 
-    // 9. Core 1: its meshes and vertex cache (statics, handed to it), its stack, and its
+    // 9. Core 1: its meshes and per-frame data (statics, handed to it), its stack, and its
     //    program (`core1`, which builds its own `Demo` from them). The power-on state machine
     //    (PSM) and the FIFO between the cores are used once, to start it.
     let core1_buffers = CORE1_BUFFERS.take();

@@ -1,5 +1,5 @@
 //! arealight on an STM32F411 (WeAct Black Pill): a sphere and a tumbling torus under a
-//! rectangular area light and an orbiting sphere light, shaded per pixel in `f32` on the
+//! rectangular area light and an orbiting sphere light, shaded (Gouraud) in `f32` on the
 //! Cortex-M4F's FPU and streamed to an ILI9341 display (240x320, the scene in its middle
 //! 240x240) in 240x16 bands. Each frame's cost in core clock cycles, read from the DWT cycle
 //! counter, goes to the defmt log (`cargo run --release` with probe-rs prints it).
@@ -119,7 +119,7 @@ fn main() -> ! {
 
     // 9. The scene (shared with the RP2040 firmware: boards/demo-scene). Its meshes (a UV
     //    sphere and a torus), their per-frame vertex data and the gamma table (about
-    //    85 KiB) live in a static buffer, filled once; the camera, materials and draw options
+    //    60 KiB) live in a static buffer, filled once; the camera, materials and draw options
     //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
     //    stack, which would need more than the F411's 128 KiB at start-up); `take` hands out
     //    its `&'static mut` once.
