@@ -541,7 +541,12 @@ fn unknown_keys_are_answered_and_reported_on_stderr() {
     let input: String = lines.iter().map(|l| format!("{l}\n")).collect();
     let (out, code, stderr) = run_full("f64", &input);
     assert_eq!(code, 0);
-    let clean = run("f64", &[json!({"id": 1, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3})]);
+    let clean = run(
+        "f64",
+        &[
+            json!({"id": 1, "model": "cap_lambert", "n": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3}),
+        ],
+    );
     let first: serde_json::Value = serde_json::from_str(&out[0]).unwrap();
     assert_eq!(first["value"], clean[0]["value"]);
     let second: serde_json::Value = serde_json::from_str(&out[1]).unwrap();

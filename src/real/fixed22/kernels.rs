@@ -488,4 +488,3 @@ pub(super) fn ln_bits(x: i32) -> i32 {
     let l = mul_q30(t, horner_q30(&LN1P_Q30, t));
     q30_to_q22(e * LN2_Q30 + l)
 }
-
