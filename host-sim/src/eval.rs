@@ -1062,10 +1062,7 @@ pub fn process_line(line: &[u8], line_no: usize, backend: Backend) -> OutLine {
     }
     let params = Params::new(&map, def);
     let mut warning = None;
-    let result = check_keys(def, &map).and_then(|w| {
-        warning = w;
-        Ok(())
-    });
+    let result = check_keys(def, &map).map(|w| warning = w);
     let result = result.and_then(|()| match backend {
         Backend::F64 => eval_model::<f64>(def, &params),
         Backend::F32 => inputs_fit::<f32>(def, &map).and_then(|()| eval_model::<f32>(def, &params)),
