@@ -52,11 +52,14 @@ struct HostBackend {
     tolerance: fn(&str) -> f64,
     /// The same backend evaluated on the host (for the bit-identity report).
     host: fn(model: usize) -> Vec<Sample>,
-    /// The demo shade evaluated on the host in the same backend: (case, input, colour).
-    demo: fn() -> Vec<(usize, usize, [f64; 3])>,
+    /// The demo shade evaluated on the host in the same backend.
+    demo: fn() -> Vec<DemoShade>,
 }
 
-fn demo_host<T: Real>() -> Vec<(usize, usize, [f64; 3])> {
+/// One demo shade on the host: (case, input, colour).
+type DemoShade = (usize, usize, [f64; 3]);
+
+fn demo_host<T: Real>() -> Vec<DemoShade> {
     let mut v = Vec::new();
     let _ = demo_shade::run::<T, _>(|x| x, &mut Plain, &mut |c, i, val, _| v.push((c, i, val)));
     v
