@@ -238,7 +238,7 @@ pub trait Real:
         let v = self.to_f64() * f64::from(1u32 << frac.min(30)) + 0.5;
         let t = v as i32; // saturating, NaN -> 0
         if f64::from(t) > v {
-            t - 1
+            t.saturating_sub(1)
         } else {
             t
         }
@@ -364,7 +364,7 @@ macro_rules! impl_real_float {
                 let v = self * (1u32 << frac.min(30)) as $t + 0.5;
                 let t = v as i32; // saturating, NaN -> 0
                 if (t as $t) > v {
-                    t - 1
+                    t.saturating_sub(1)
                 } else {
                     t
                 }

@@ -7,7 +7,8 @@
 //! The reference is the quadrature with panel ends concentrated around the lobe axis
 //! ([`qd::lobe_cuts`]), checked here first against exactly known integrals at m = 1001.
 //!
-//! Asserted: f64 within 1e-9 and f32 within 1e-5 of the quadrature for every m (issue 8);
+//! Asserted: f64 within its `(m <= 1001)` row of the f64 budget (`F64_BUDGET` in tests/common)
+//! and f32 within 1e-5 of the quadrature for every m (issue 8);
 //! Fast32 within 1/1024 for m <= 255 and within 4e-3 above (reported per m).
 
 // `!(e <= tol)` is deliberate: it is true for a NaN error.
@@ -25,8 +26,6 @@ use std::f64::consts::{FRAC_PI_2, PI};
 /// The exponents of the large-exponent table.
 const MS: [u32; 11] = [0, 1, 2, 3, 63, 64, 255, 256, 511, 1000, 1001];
 
-/// f64 vs quadrature, every m.
-const TOL_F64_LARGE: f64 = 1e-9;
 /// f32 vs quadrature, every m up to 1001.
 const TOL_F32_LARGE: f64 = 1e-5;
 /// Fast32 vs quadrature: 1/1024 up to m = 255 (its main bound), 4e-3 above.
@@ -464,7 +463,8 @@ fn upd(slot: &mut f64, e: f64) -> bool {
 /// The large-exponent table (printed as `[table]` lines) and its bounds. A case is
 /// ill-conditioned when the f64 model itself moves by `sens` with `SENS_FACTOR sens > 2e-6`
 /// under one-ULP f32 changes of its inputs (a sphere seen from d/R = 1.001: the f32 rounding of
-/// `center - p` moves sigma); its f32 bound is `1e-5 + SENS_FACTOR sens` (tests/common).
+/// `center - p` moves sigma); its f32 bound is `1e-5 + SENS_FACTOR sens`, capped at
+/// `BOUND_CAP` (tests/common).
 #[test]
 fn large_exponent_table() {
     let models = [
@@ -496,7 +496,7 @@ fn large_exponent_table() {
             let b32 = if ill {
                 row.n_ill += 1;
                 upd(&mut row.f32q_ill, e32);
-                TOL_F32_LARGE + SENS_FACTOR * sens
+                (TOL_F32_LARGE + SENS_FACTOR * sens).min(BOUND_CAP)
             } else {
                 row.n += 1;
                 if upd(&mut row.f32q, e32) {
@@ -520,7 +520,7 @@ fn large_exponent_table() {
                     }
                 }
             }
-            if !(e64 <= TOL_F64_LARGE) {
+            if !(e64 <= tol_f64(&format!("{} (m <= 1001)", c.model()))) {
                 failures.push(format!(
                     "f64 m={m} err {e64:.3e}: {c:?} got {a64:e} want {want:e}"
                 ));

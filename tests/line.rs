@@ -2,13 +2,16 @@
 //!
 //! - `[line_lambert]` is not normalized (it scales as `length^-k`), so every error is measured
 //!   relative to `max(1, |I|)`: absolute below 1, relative above. f64 against an independent
-//!   adaptive Gauss-Kronrod quadrature (`tests/common/line_quadrature.rs`) <= 1e-9, on random
-//!   and adversarial configurations for k = 0..3; f32 and Fast32 against f64 on the same
-//!   f32-rounded inputs <= 2e-6 and <= 1/1024, with the ill-conditioned regime of
-//!   `tests/common` (the f64 model itself moves by more than that under one-ULP changes of the
-//!   f32 inputs) reported separately and held to `tol + 4 * sensitivity`.
+//!   adaptive Gauss-Kronrod quadrature (`tests/common/line_quadrature.rs`) within its rows of
+//!   the f64 budget (`F64_BUDGET` in tests/common: one for p within 1e-2 to 1e-6 lengths of a
+//!   rotated segment, where f64's own rounding of `a - p` dominates, one for the rest), on
+//!   random and adversarial configurations for k = 0..3; f32 and Fast32 against f64 on the same
+//!   f32-rounded inputs, per regime (`Bounded` in tests/common: 2e-6 and 1/1024 in the main
+//!   regime; f32 near the segment and where the f64 model itself moves under one-ULP changes of
+//!   the f32 inputs held to its extra terms, both capped at `BOUND_CAP`, the unresolved cases
+//!   reported).
 //! - The peaks against a brute-force search (dense sampling plus golden-section refinement)
-//!   <= 1e-9 in f64; f32 / Fast32 against f64 as above.
+//!   within their rows of the f64 budget; f32 / Fast32 against f64 as above.
 //! - The peak against the Phong integral it stands for (`[phong_polygon]` of the same
 //!   parallelogram): a table of `[maxerr]` lines for m in {1, 8, 32, 128}.
 //! - Invalid and adversarial inputs (NaN, infinity, huge, subnormal): no panic, no NaN.
@@ -311,6 +314,9 @@ fn lambert_f64_vs_quadrature() {
     let mut rng = Rng::new(0x11e0);
     let cases = line_cases(&mut rng);
     let mut all = MaxErr::new("line_lambert f64 vs quadrature (scaled)");
+    let mut close = MaxErr::new(
+        "line_lambert f64 vs quadrature (scaled), p within 1e-2 to 1e-6 lengths of a rotated segment",
+    );
     let mut by_kind: std::collections::BTreeMap<&str, MaxErr> = Default::default();
     let mut worst_est = 0.0f64;
     let mut count_zero = 0;
@@ -323,7 +329,11 @@ fn lambert_f64_vs_quadrature() {
         if q == 0.0 {
             count_zero += 1;
         }
-        all.add(got / s, q / s, || c.describe());
+        if c.kind.starts_with("close") {
+            close.add(got / s, q / s, || c.describe());
+        } else {
+            all.add(got / s, q / s, || c.describe());
+        }
         by_kind
             .entry(c.kind)
             .or_insert_with(|| MaxErr::new(&format!("line_lambert f64 [{}]", c.kind)))
@@ -340,7 +350,13 @@ fn lambert_f64_vs_quadrature() {
         worst_est <= 1e-13,
         "quadrature did not converge: {worst_est:e}"
     );
-    all.check(TOL_F64);
+    check_all(&[
+        (&all, tol_f64("line_lambert")),
+        (
+            &close,
+            tol_f64("line_lambert (p within 1e-2 to 1e-6 lengths of a rotated segment)"),
+        ),
+    ]);
 }
 
 /// `I(lambda * geometry) = lambda^-k I(geometry)` (exact powers of two, so the inputs scale
@@ -439,15 +455,9 @@ fn lambert_lowp<T: Real>(name: &str, bounds: LowpBounds) -> Bounded {
 #[test]
 fn lambert_f32_and_fast32_vs_f64() {
     let f32s = lambert_lowp::<f32>("line_lambert f32 vs f64 (scaled)", BOUNDS_F32);
-    // Fast32 gets the same extra term in the ill-conditioned regime: there the f32 input
-    // rounding alone moves the value by more than 1/1024 (see the README).
-    let fast = lambert_lowp::<Fast32>(
-        "line_lambert Fast32 vs f64 (scaled)",
-        LowpBounds {
-            tol: TOL_FAST32,
-            extra_terms: true,
-        },
-    );
+    // Fast32: 1/1024 in every regime below the cap (tests/common); where the f32 rounding of the
+    // inputs alone moves the value by more, the case is beyond the cap for both backends.
+    let fast = lambert_lowp::<Fast32>("line_lambert Fast32 vs f64 (scaled)", BOUNDS_FAST32);
     check_bounded(&[&f32s, &fast]);
 }
 
@@ -668,8 +678,8 @@ fn peaks_f64_vs_brute_force() {
             let got = lib_line_peak::<f64>(&c, m).unwrap();
             let want = lq::lobe(cos, m);
             if c.kind.starts_with("p within 1e-9") {
-                // Held to 1e-9 plus 4 times the f64 model's own change under one-ULP (f64)
-                // changes of its inputs.
+                // Held to the peak's f64 tolerance plus 4 times the f64 model's own change
+                // under one-ULP (f64) changes of its inputs.
                 let x = flat(&[c.g[0], c.g[1], c.p, c.r], &[]);
                 let sens = sensitivity_f64(
                     |y| {
@@ -683,7 +693,12 @@ fn peaks_f64_vs_brute_force() {
                     },
                     &x,
                 );
-                ill_ratio = ill_ratio.max((got - want).abs() / (TOL_F64 + 4.0 * sens));
+                let tol = if m > 1000 {
+                    tol_f64("line_phong_peak (m = 2^16, 2^20)")
+                } else {
+                    tol_f64("line_phong_peak")
+                };
+                ill_ratio = ill_ratio.max((got - want).abs() / (tol + 4.0 * sens));
                 ill.add(got, want, || {
                     format!("m={m} sens64={sens:.2e} {}", c.describe())
                 });
@@ -697,7 +712,9 @@ fn peaks_f64_vs_brute_force() {
         }
     }
     ill.report();
-    println!("    (h = 1e-9 rotated: max err / (1e-9 + 4 * f64 sensitivity) = {ill_ratio:.3})");
+    println!(
+        "    (h = 1e-9 rotated: max err / (f64 tolerance + 4 * f64 sensitivity) = {ill_ratio:.3})"
+    );
     assert!(ill_ratio <= 1.0, "{ill_ratio}");
     for c in rect_peak_cases(&mut rng) {
         let cos = lq::rect_max_cos(c.g[0], c.g[1], c.g[2], c.p, c.r);
@@ -710,10 +727,10 @@ fn peaks_f64_vs_brute_force() {
     // At m = 2^16 and 2^20 the brute force's own cos^m carries m times the rounding of its
     // cosine (~1e-10); the library's exp(m ln1p(-v)) does not.
     check_all(&[
-        (&line, TOL_F64),
-        (&rect, TOL_F64),
-        (&line_hi, TOL_F64),
-        (&rect_hi, TOL_F64),
+        (&line, tol_f64("line_phong_peak")),
+        (&rect, tol_f64("rect_phong_peak")),
+        (&line_hi, tol_f64("line_phong_peak (m = 2^16, 2^20)")),
+        (&rect_hi, tol_f64("rect_phong_peak (m = 2^16, 2^20)")),
     ]);
 }
 
@@ -761,9 +778,12 @@ fn peaks_lowp<T: Real>(
                 } else {
                     lib_line_peak::<T>(&c, m)
                 } {
-                    // In the plane of the parallelogram to T's precision: the model is 0 there
-                    // by definition (the spec's degenerate case), so it jumps at the plane;
-                    // T resolves the plane only to its own rounding.
+                    // In the plane of the parallelogram to T's precision, where the library
+                    // answers 0 today (against the definition: see
+                    // `rect_peak_in_plane_follows_the_definition`, ignored until src/line.rs
+                    // is fixed), so it jumps at the plane; T resolves the plane only to its own
+                    // rounding. With the fix the value is continuous there and this skip no
+                    // longer applies (it needs `g == 0`).
                     Ok(g) if is_rect && g == 0.0 && want != 0.0 && in_plane_to_f32(&c) => {
                         *plane_skips += 1;
                         continue;
@@ -811,23 +831,16 @@ fn peaks_lowp<T: Real>(
 fn peaks_f32_and_fast32_vs_f64() {
     let (mut skip32, mut skipf) = (0, 0);
     let (l32, r32) = peaks_lowp::<f32>("f32", BOUNDS_F32, &mut skip32);
-    let (lf, rf) = peaks_lowp::<Fast32>(
-        "Fast32",
-        LowpBounds {
-            tol: TOL_FAST32,
-            extra_terms: true,
-        },
-        &mut skipf,
-    );
+    let (lf, rf) = peaks_lowp::<Fast32>("Fast32", BOUNDS_FAST32, &mut skipf);
     println!(
-        "[maxerr] rect_phong_peak: p in the plane to f32 precision (0 by definition there, the f64 model resolves the plane): {skip32} f32 and {skipf} Fast32 evaluations not compared"
+        "[maxerr] rect_phong_peak: p in the plane to f32 precision (0 there today, see rect_peak_in_plane_follows_the_definition; the f64 model resolves the plane): {skip32} f32 and {skipf} Fast32 evaluations not compared"
     );
     check_bounded(&[&l32, &r32, &lf, &rf]);
 }
 
 /// How far Picott's peak is from the Phong integral it stands for,
 /// `I = ((m + 1)/(2 pi)) integral ((u.r)+)^m du` over the light (`[phong_polygon]` of the same
-/// parallelogram, itself within 1e-9 of quadrature in tests/phong.rs), for lights of a typical
+/// parallelogram, itself checked against quadrature in tests/phong.rs), for lights of a typical
 /// size (subtending 0.02 to 0.6 sr) and r within 0.3 rad of the light. A segment has zero solid
 /// angle (its integral is 0), so it is compared through a thin rectangle around it (width 1%
 /// of the length): the integral goes to 0 with the width, the peak does not.
@@ -1168,4 +1181,59 @@ fn adversarial_inputs_never_panic_or_give_nan() {
     adversarial_inputs::<f64>();
     adversarial_inputs::<f32>();
     adversarial_inputs::<Fast32>();
+}
+
+/// `[rect_phong_peak]` with p in the parallelogram's plane, outside it: the definition (the
+/// largest `((u.r)+)^m` over the light's points) holds there too; it is not a polygon model's
+/// degenerate case (a peak has a value wherever some point of the light is seen: in the plane
+/// every direction toward the light lies in the plane). The case: p = (3, 0, 2),
+/// r = (-1, 0.2, 0), origin (-1, -1, 2), eu = (2, 0, 0), ev = (0, 2, 0), m = 8 gives 1 (r
+/// points at the light); then random in-plane configurations against the brute force.
+#[test]
+#[ignore = "needs fix in src/line.rs: ParallelogramLight::try_phong_peak returns 0 for p in the parallelogram's plane (outside it); the definition gives the largest ((u.r)+)^m over the light's points, e.g. 1 for p = (3, 0, 2), r = (-1, 0.2, 0), origin (-1, -1, 2), eu = (2, 0, 0), ev = (0, 2, 0), m = 8: in the plane, take the best direction over the parallelogram's edges as seen from p (the 2D case of the segment peak) instead of returning 0"]
+fn rect_peak_in_plane_follows_the_definition() {
+    let light = ParallelogramLight::<f64>::new(
+        Vec3::new(-1.0, -1.0, 2.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 2.0, 0.0),
+    )
+    .unwrap();
+    let lobe = PhongLobe::<f64>::new(8).unwrap();
+    let got = light.phong_peak(&lobe, Vec3::new(3.0, 0.0, 2.0), Vec3::new(-1.0, 0.2, 0.0));
+    assert_eq!(got, 1.0, "the issue's case");
+    let mut rng = Rng::new(0x1a7e);
+    let mut e = MaxErr::new("rect_phong_peak f64 vs brute force, p in the plane (outside)");
+    for _ in 0..200 {
+        let o = rbox(&mut rng, 2.0);
+        let eu = scale(rng.dir(), rng.range(0.3, 2.0));
+        let ev = scale(
+            normalize(cross(cross(eu, rng.dir()), eu)),
+            rng.range(0.3, 2.0),
+        );
+        let nu = normalize(cross(eu, ev));
+        // p in the plane, outside: beyond an edge or a corner.
+        let (s, t) = match rng.below(3) {
+            0 => (rng.range(1.2, 3.0), rng.range(0.0, 1.0)),
+            1 => (rng.range(-2.0, -0.2), rng.range(-2.0, 3.0)),
+            _ => (rng.range(1.2, 3.0), rng.range(1.2, 3.0)),
+        };
+        let p = add(o, add(scale(eu, s), scale(ev, t)));
+        // r toward a point of the light (peak 1), or tilted off the plane, or away.
+        let x = add(o, add(scale(eu, rng.unit()), scale(ev, rng.unit())));
+        let toward = normalize(sub(x, p));
+        let r = match rng.below(3) {
+            0 => toward,
+            1 => normalize(add(toward, scale(nu, rng.range(-0.5, 0.5)))),
+            _ => rng.dir(),
+        };
+        let cos = lq::rect_max_cos(o, eu, ev, p, r);
+        let pl = ParallelogramLight::<f64>::new(v(o), v(eu), v(ev)).unwrap();
+        for m in [0u32, 1, 8, 128] {
+            let got = pl.phong_peak(&PhongLobe::new(m).unwrap(), v(p), v(r));
+            e.add(got, lq::lobe(cos, m), || {
+                format!("m={m} o={o:?} eu={eu:?} ev={ev:?} p={p:?} r={r:?}")
+            });
+        }
+    }
+    e.check(tol_f64("rect_phong_peak"));
 }

@@ -1,13 +1,16 @@
 //! Phong models: `[phong_hemi_const]`, `[phong_hemi_cos]`, `[phong_cap]`, `[phong_sphere]`,
 //! `[phong_polygon]`, for m in {0, 1, 2, 3, 63, 64, 255} (and random m <= 255).
 //!
-//! f64 library vs the independent quadrature (<= 1e-9), then f32 and Fast32 vs f64 on the same
-//! rounded inputs (<= 2e-6 and <= 1/1024 in the main regime; f32 also <= 2e-6 + m 2^-24 at
-//! high m, and the ill-conditioned and near-boundary bounds of `f32_bound` in tests/common).
+//! f64 library vs the independent quadrature (within its row of the f64 budget, `F64_BUDGET`
+//! in tests/common), then f32 and Fast32 vs f64 on the same rounded inputs (<= 2e-6 and
+//! <= 1/1024 in the main regime; f32 also <= 2e-6 + m 2^-24 at high m, and the
+//! ill-conditioned, near-boundary and capped bounds of `f32_bound` in tests/common).
 
 mod common;
 
-use arealight::{CapLight, Fast32, HemisphereLight, PhongLobe, PolygonLight, Real, SphereLight};
+use arealight::{
+    CapLight, Fast32, HemisphereLight, PhongLobe, PolygonLight, Real, SphereLight, Vec3,
+};
 use common::quadrature as qd;
 use common::*;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -57,7 +60,10 @@ fn hemisphere_f64_vs_quadrature() {
             );
         }
     }
-    check_all(&[(&e_const, TOL_F64), (&e_cos, TOL_F64)]);
+    check_all(&[
+        (&e_const, tol_f64("phong_hemi_const")),
+        (&e_cos, tol_f64("phong_hemi_cos")),
+    ]);
 }
 
 #[test]
@@ -83,7 +89,7 @@ fn cap_f64_vs_quadrature() {
             );
         }
     }
-    e_cap.check(TOL_F64);
+    e_cap.check(tol_f64("phong_cap"));
 }
 
 #[test]
@@ -102,7 +108,7 @@ fn sphere_f64_vs_quadrature() {
             );
         }
     }
-    e_sph.check(TOL_F64);
+    e_sph.check(tol_f64("phong_sphere"));
 }
 
 #[test]
@@ -156,8 +162,9 @@ fn polygon_f64_vs_quadrature() {
             );
         }
     }
-    let mut all = vec![(&e_rand, TOL_F64), (&e_adv, TOL_F64)];
-    all.extend(e_ext.iter().map(|e| (e, TOL_F64)));
+    let tol = tol_f64("phong_polygon");
+    let mut all = vec![(&e_rand, tol), (&e_adv, tol)];
+    all.extend(e_ext.iter().map(|e| (e, tol)));
     check_all(&all);
 }
 
@@ -406,3 +413,105 @@ macro_rules! lowp_tests {
 
 lowp_tests!(f32_vs_f64, f32, BOUNDS_F32);
 lowp_tests!(fast32_vs_f64, Fast32, BOUNDS_FAST32);
+
+/// `[phong_polygon]` is scale invariant: the same configuration scaled by 2^k (exact) gives
+/// the same value, on f64 and f32, from the smallest coordinates the type represents to the
+/// largest, for odd and even m (the even path adds the solid angle of the clipped projection:
+/// the fan and the J terms must drop or keep an edge together). Short edges and close shading
+/// points below `T::TINY` in absolute terms are not small relative to the configuration.
+fn phong_scale_invariance<T: Real>(name: &str, exps: &[i32], tol: f64) -> Vec<String> {
+    let mut rng = Rng::new(0x5ca1e + exps.len() as u64);
+    let mut bad = Vec::new();
+    let mut worst = 0.0f64;
+    for c in random_polygons(&mut rng, 60) {
+        let verts: Vec<V3> = c.verts.iter().map(|&x| rdv::<T>(x)).collect();
+        let (p, r) = (rdv::<T>(c.p), rdv::<T>(c.k));
+        for m in [1u32, 2, 8, 9] {
+            let lobe = PhongLobe::<T>::new(m).unwrap();
+            let at = |e: i32| -> Option<f64> {
+                let s = 2f64.powi(e);
+                let vs: Vec<Vec3<T>> = verts.iter().map(|&x| v(scale(x, s))).collect();
+                let l = PolygonLight::<T, 8>::new(&vs).ok()?;
+                Some(l.phong(&lobe, v(scale(p, s)), v(r)).to_f64())
+            };
+            let Some(base) = at(0) else { continue };
+            for &e in exps {
+                let Some(x) = at(e) else { continue };
+                let err = (x - base).abs();
+                worst = worst.max(err);
+                if err > tol || err.is_nan() {
+                    bad.push(format!("{name} m={m} 2^{e}: {x:e} vs {base:e}"));
+                }
+            }
+        }
+    }
+    println!("[maxerr] phong_polygon {name} scaled by 2^{exps:?} vs unscaled: {worst:.3e}");
+    bad
+}
+
+#[test]
+#[ignore = "needs fix in src/phong.rs (PolygonLight::try_phong): an edge is dropped (from the J terms and the fan alike) when |ua|, |G| = |ua x d| or ua.ub leave [TINY, MAX] in absolute terms, so a configuration scaled by 2^k loses its edges (measured: f32 at 2^-40 and below and 2^70 and above, f64 at 2^-500, give 0 instead of up to 0.69): rescale each edge's ua, ub and d by a common power of two (their max_abs) before the products (the terms are scale-free)"]
+fn phong_polygon_is_scale_invariant() {
+    let mut bad = phong_scale_invariance::<f64>("f64", &[-900, -500, -100, 100, 500, 900], 1e-13);
+    bad.extend(phong_scale_invariance::<f32>(
+        "f32",
+        &[-120, -100, -70, -40, 40, 70, 100, 120],
+        2e-6,
+    ));
+    assert!(
+        bad.is_empty(),
+        "{} cases not scale invariant; first: {}",
+        bad.len(),
+        bad[..bad.len().min(8)].join("; ")
+    );
+}
+
+/// An edge shorter than `T::TINY` (a vertex within TINY of its neighbour) changes nothing:
+/// the polygon with it equals the polygon without it, for odd m (the J terms) and even m (the
+/// J terms plus the fan of the clipped solid angle, which must drop such an edge with them).
+#[test]
+fn an_edge_below_tiny_changes_nothing() {
+    fn check<T: Real>(name: &str, delta: f64, tol: f64) -> f64 {
+        let mut rng = Rng::new(0x7e1e);
+        let mut worst = 0.0f64;
+        for _ in 0..200 {
+            let (a, c, d) = ([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+            let b = [delta, delta, 0.0];
+            let p = [
+                rng.range(-0.5, 1.0),
+                rng.range(-0.5, 1.0),
+                rng.range(0.1, 1.0),
+            ];
+            let r = rng.dir();
+            let with: Vec<Vec3<T>> = [a, b, c, d].iter().map(|&x| v(x)).collect();
+            let without: Vec<Vec3<T>> = [a, c, d].iter().map(|&x| v(x)).collect();
+            let (Ok(l4), Ok(l3)) = (
+                PolygonLight::<T, 4>::new(&with),
+                PolygonLight::<T, 4>::new(&without),
+            ) else {
+                panic!("{name}: constructor refused the polygon");
+            };
+            for m in [0u32, 1, 2, 7, 8] {
+                let lobe = PhongLobe::<T>::new(m).unwrap();
+                let (x, y) = (
+                    l4.phong(&lobe, v(p), v(r)).to_f64(),
+                    l3.phong(&lobe, v(p), v(r)).to_f64(),
+                );
+                worst = worst.max((x - y).abs());
+                assert!(
+                    (x - y).abs() <= tol,
+                    "{name} m={m}: {x:e} with the edge, {y:e} without; p={p:?} r={r:?}"
+                );
+            }
+            let (x, y) = (
+                l4.lambert(v(p), v(r)).to_f64(),
+                l3.lambert(v(p), v(r)).to_f64(),
+            );
+            assert!((x - y).abs() <= tol, "{name} lambert: {x:e} vs {y:e}");
+        }
+        println!("[maxerr] {name}: polygon with an edge of {delta:e} vs without: {worst:.3e}");
+        worst
+    }
+    check::<f64>("f64", 1e-160, 1e-15);
+    check::<f32>("f32", 1e-20, 1e-6);
+}

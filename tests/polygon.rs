@@ -1,14 +1,14 @@
 //! Polygon lights, Lambertian: `[polygon_lambert]`.
 //!
-//! f64 library vs the independent quadrature (<= 1e-9) on random polygons (triangles, quads,
-//! star-shaped 7-gons, L- and U-shapes) and adversarial ones (partly or wholly below the
+//! f64 library vs the independent quadrature (within its row of the f64 budget, `F64_BUDGET`
+//! in tests/common) on random polygons (triangles, quads, star-shaped 7-gons, L- and U-shapes) and adversarial ones (partly or wholly below the
 //! horizon, horizon through a vertex or a notch, nearly edge-on to p with the foot inside and
 //! outside, p near a vertex or an edge, stars), then f32 and Fast32 vs f64 on the same rounded
 //! inputs (<= 2e-6 and <= 1/1024 in the main regime; see `f32_bound` in tests/common).
 
 mod common;
 
-use arealight::{Fast32, PolygonLight, Real};
+use arealight::{Fast32, PolygonLight, Real, Vec3};
 use common::quadrature as qd;
 use common::*;
 
@@ -64,7 +64,8 @@ fn f64_vs_quadrature() {
             c.describe()
         });
     }
-    check_all(&[(&e_rand, TOL_F64), (&e_adv, TOL_F64), (&e_ext, TOL_F64)]);
+    let tol = tol_f64("polygon_lambert");
+    check_all(&[(&e_rand, tol), (&e_adv, tol), (&e_ext, tol)]);
 }
 
 /// A shading point in the polygon's plane sees nothing (models.md: 0).
@@ -160,3 +161,150 @@ macro_rules! lowp_tests {
 
 lowp_tests!(f32_vs_f64, f32, BOUNDS_F32);
 lowp_tests!(fast32_vs_f64, Fast32, BOUNDS_FAST32);
+
+/// A planar polygon rounded to Fixed22 is still planar to Fixed22's resolution: the
+/// constructor must accept it whatever its size within the coordinate range (the models are
+/// scale invariant; the README tells users to scale their scene into the cube). Today a
+/// square of side 0.05 in a tilted plane is refused as `NotPlanar`: the rounding (2^-23 per
+/// coordinate) moves its vertices off the plane by more than 1e-6 of its size.
+#[test]
+#[ignore = "needs fix in src/polygon.rs: validate_polygon's planarity tolerance PLANAR_TOL * size (1e-6 of the size) is below Fixed22's rounding of the vertices for polygons smaller than about 0.2; a plain max(PLANAR_TOL * size, 4 * T::EPSILON) was tried and changes which f32 polygons are accepted: the tolerance must follow each backend's rounding of the vertices"]
+fn fixed22_accepts_small_planar_polygons() {
+    use arealight::Fixed22;
+    let mut rng = Rng::new(0xf1a7);
+    let mut refused = Vec::new();
+    for i in 0..200 {
+        let side = [0.05, 0.1, 0.2][i % 3];
+        let sq = [[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]];
+        let center = scale(rng.dir(), 1.5);
+        let verts = place(&mut rng, &sq, center, side);
+        let vs: Vec<Vec3<Fixed22>> = verts.iter().map(|&x| v(x)).collect();
+        if let Err(e) = PolygonLight::<Fixed22, 4>::new(&vs) {
+            refused.push(format!("side {side}: {e}"));
+        }
+    }
+    assert!(
+        refused.is_empty(),
+        "{} of 200 refused; first: {}",
+        refused.len(),
+        refused[0]
+    );
+}
+
+/// A shading point in the polygon's plane gets 0 from every polygon model (models.md), on
+/// Fixed22 too, wherever it lies in the plane: points of the plane rounded to Fixed22 (within
+/// its resolution, 2^-22, of the plane) at 1e-3 to 1 of the size from vertex 0, from vertex 2,
+/// inside and outside the polygon. Today the in-plane test scales its tolerance by
+/// `|p - v0|` (a relative tolerance, right for floats), so near vertex 0 Fixed22's absolute
+/// rounding of p reads as a distance from the plane and the point gets the value of a point
+/// just off the plane (up to 1/2 under the polygon).
+#[test]
+#[ignore = "needs fix in src/polygon.rs: PolygonLight::in_plane compares the distance to 4 EPSILON |p - v0|_max, which vanishes near vertex 0 while Fixed22's rounding of p is absolute; scaling by max(|p - v0|, |v0|) was tried and breaks f32 (a point 1e-6 above a polygon 5 units from the origin reads as in-plane): the tolerance must add the type's absolute resolution only (Fixed22), not a relative one"]
+fn in_plane_points_give_zero_on_fixed22_near_every_vertex() {
+    use arealight::{Fixed22, PhongLobe};
+    type F = Fixed22;
+    let mut rng = Rng::new(0x1a9e);
+    let sq = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+    let mut bad = Vec::new();
+    let mut count = 0;
+    for _ in 0..40 {
+        let center = scale(rng.dir(), rng.range(0.0, 1.5));
+        let verts = place(&mut rng, &sq, center, 1.0);
+        let vs: Vec<Vec3<F>> = verts.iter().map(|&x| v(x)).collect();
+        let Ok(light) = PolygonLight::<F, 4>::new(&vs) else {
+            continue;
+        };
+        let nrm = normalize(cross(sub(verts[1], verts[0]), sub(verts[2], verts[0])));
+        let lobe = PhongLobe::<F>::new(8).unwrap();
+        for corner in [0usize, 2] {
+            let c = verts[corner];
+            let toward = normalize(sub(center, c));
+            let side = normalize(cross(nrm, toward));
+            for r in [1e-3, 3e-3, 1e-2, 0.1, 1.0] {
+                for (label, dir) in [
+                    ("inside", toward),
+                    ("outside", scale(toward, -1.0)),
+                    ("along", side),
+                ] {
+                    let p = add(c, scale(dir, r));
+                    for n in [nrm, scale(nrm, -1.0)] {
+                        count += 1;
+                        let lam = light.lambert(v(p), v(n)).to_f64();
+                        let pho = light.phong(&lobe, v(p), v(n)).to_f64();
+                        if lam != 0.0 || pho != 0.0 {
+                            bad.push(format!(
+                                "vertex {corner}, {label}, r = {r:e}: lambert {lam:e}, phong {pho:e}"
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let near_v0 = bad.iter().filter(|b| b.starts_with("vertex 0")).count();
+    assert!(
+        bad.is_empty(),
+        "{} of {count} in-plane points not 0 ({near_v0} of them near vertex 0); first: {}",
+        bad.len(),
+        bad[..bad.len().min(6)].join("; ")
+    );
+}
+
+/// `[polygon_lambert]` is scale invariant: the same configuration scaled by 2^k (exact) gives
+/// the same value, on f64 and f32, from the smallest coordinates the type represents to the
+/// largest. Today an edge whose `G = ua x d` (or `ua.ub`) leaves `[TINY, MAX]` in absolute
+/// terms is dropped: `edge_angle_term` returns 0 for it, a finite but wrong result (f32: 0
+/// instead of 0.598, at 2^-70 and below and 2^64 and above).
+fn lambert_scale_invariance<T: Real>(name: &str, exps: &[i32], tol: f64) -> Vec<String> {
+    let mut rng = Rng::new(0x5ca1e);
+    let mut bad = Vec::new();
+    let mut worst = 0.0f64;
+    for c in random_polygons(&mut rng, 200) {
+        // Rounded to T first, then scaled by powers of two (exact).
+        let verts: Vec<V3> = c.verts.iter().map(|&x| rdv::<T>(x)).collect();
+        let (p, n) = (rdv::<T>(c.p), rdv::<T>(c.k));
+        let at = |e: i32| -> Option<f64> {
+            let s = 2f64.powi(e);
+            let vs: Vec<Vec3<T>> = verts.iter().map(|&x| v(scale(x, s))).collect();
+            let l = PolygonLight::<T, 8>::new(&vs).ok()?;
+            Some(l.lambert(v(scale(p, s)), v(n)).to_f64())
+        };
+        let Some(base) = at(0) else { continue };
+        for &e in exps {
+            let Some(x) = at(e) else { continue };
+            let err = (x - base).abs();
+            worst = worst.max(err);
+            if err > tol || err.is_nan() {
+                bad.push(format!(
+                    "{name} 2^{e}: {x:e} vs {base:e} for {}",
+                    c.describe()
+                ));
+            }
+        }
+    }
+    println!("[maxerr] polygon_lambert {name} scaled by 2^{exps:?} vs unscaled: {worst:.3e}");
+    bad
+}
+
+#[test]
+#[ignore = "needs fix in src/polygon.rs: edge_angle_term returns 0 when G = ua x d or ua.ub leaves [TINY, MAX]: f32 configurations scaled by 2^-70 and below or 2^64 and above give 0 (measured: 0 instead of 0.598; f64 is fine from 2^-900 to 2^900): rescale ua, ub and d by a common power of two (their max_abs) before the cross and dot products (the term is scale-free)"]
+fn lambert_is_scale_invariant() {
+    let mut bad = lambert_scale_invariance::<f64>("f64", &[-900, -500, -100, 100, 500, 900], 1e-13);
+    bad.extend(lambert_scale_invariance::<f32>(
+        "f32",
+        &[-120, -100, -70, -40, 40, 60, 64, 70, 100, 120],
+        1e-6,
+    ));
+    let mut by_exp = std::collections::BTreeMap::<String, usize>::new();
+    for b in &bad {
+        *by_exp
+            .entry(b.split(':').next().unwrap().to_string())
+            .or_default() += 1;
+    }
+    assert!(
+        bad.is_empty(),
+        "{} cases not scale invariant, by scale {by_exp:?}; first: {}",
+        bad.len(),
+        bad[..bad.len().min(4)].join("; ")
+    );
+}

@@ -1,28 +1,37 @@
 //! Property tests (proptest) of every model, written once as a macro and instantiated per
-//! backend (`f64`, `f32`, `Fast32`; the fixed-point backend is one more `properties!` line).
+//! backend (`f64`, `f32`, `Fast32`, `Fixed22`).
+//!
+//! Polygons are made planar on purpose (`planar_poly`): convex (3 to 8 vertices, the capacity),
+//! star-shaped and non-convex, regular stars, L and U shapes, and near-degenerate ones (a
+//! sliver, a vanishing edge, a nearly collinear extra vertex), either winding, in a random
+//! plane, scaled into the backend's coordinate range (a check asserts that every backend's
+//! constructor accepts them, so no property is skipped silently).
 //!
 //! - range: normalized models in [0, 1] (`hemi_cos` in [0, 2/3], `sky_overcast` in [0, C],
 //!   `sky_ground` between the two colours per channel, moments and shaping in their ranges),
 //!   for any finite input, including degenerate and badly scaled ones;
 //! - winding invariance of every polygon model;
 //! - invariance under a rotation and a translation of the whole configuration;
-//! - additivity: a quad split into two triangles gives the sum of the parts (Lambert, Phong,
-//!   clipped solid angle);
+//! - additivity: a quad split into two triangles and an L-shape split into its two rectangles
+//!   give the sum of the parts (Lambert, Phong, clipped solid angle);
 //! - Phong with m = 1 and r = n equals the Lambert model (hemisphere, cap, sphere, polygon);
 //! - the cap at sigma = pi/2 equals the constant hemisphere (Lambert and Phong);
-//! - monotone in sigma, in a sphere's radius and in a polygon scaled about its centroid;
-//! - continuity across every case boundary, as the jump over a tiny step against the local
-//!   slope: the cap at w = pi/2 - sigma, pi/2, pi/2 + sigma (Lambert) and w = sigma (Phong),
-//!   a polygon vertex crossing the horizon, and m changing parity (the moments
-//!   `mu_m = 2 pi I_m/(m + 1)` are log-convex in m: `mu_m^2 <= mu_(m-1) mu_(m+1)`, which ties
-//!   the even path, with its solid angle, to the odd one).
+//! - monotone in sigma, in a sphere's radius and in a polygon grown about a point from which
+//!   it is star-shaped;
+//! - continuity across every case boundary (`continuous`: the step across the boundary against
+//!   the other steps of a scan around it, plus a floor far below each backend's bound): the cap
+//!   at w = pi/2 - sigma, pi/2, pi/2 + sigma (Lambert) and w = sigma (Phong), a polygon vertex
+//!   crossing the horizon, and m changing parity (the moments `mu_m = 2 pi I_m/(m + 1)` are
+//!   log-convex in m: `mu_m^2 <= mu_(m-1) mu_(m+1)`, which ties the even path, with its solid
+//!   angle, to the odd one).
 //!
 //! Tolerances: f64 1e-12 (plus 1e-15 m); f32 its main-regime bound `2e-6 + m 2^-24`, Fast32
-//! `1/1024` (tests/common): the generated configurations keep to the well-conditioned regime
-//! (spheres at d/R >= 1.05, shading points at least 0.3 sizes from a polygon) except in the
-//! range properties, which assert exact bounds. For the low-precision backends the invariance
-//! properties also allow the f64 model's own change between the two rounded configurations.
-//! The case count per property is `AREALIGHT_PROP_CASES` (default 48).
+//! and Fixed22 `1/1024` (tests/common): the generated configurations keep to the
+//! well-conditioned regime (spheres at d/R >= 1.05, shading points at least 0.3 sizes from a
+//! polygon) except in the range properties, which assert exact bounds. For the low-precision
+//! backends the invariance properties also allow the f64 model's own change between the two
+//! rounded configurations. The case count per property is `AREALIGHT_PROP_CASES` (default
+//! 1024: the whole file then runs in about 0.6 s; 48 took 0.03 s, 256 0.11 s, 4096 2.2 s).
 
 mod common;
 
@@ -39,7 +48,7 @@ fn cases() -> u32 {
     std::env::var("AREALIGHT_PROP_CASES")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(48)
+        .unwrap_or(1024)
 }
 
 /// The exponents the properties draw from (large m: tests/large_exponents.rs).
@@ -63,31 +72,127 @@ fn poly<T: Real>(verts: &[V3]) -> Option<PolygonLight<T, 8>> {
     PolygonLight::new(&vs).ok()
 }
 
-/// A polygon configuration: vertices, shading point, weight axis.
+/// A polygon configuration: vertices, shading point, weight axis, and a point of the plane
+/// from which the polygon is star-shaped (`None` for the U-shape, which has none).
 #[derive(Clone, Debug)]
 struct Poly {
+    kind: &'static str,
     verts: Vec<V3>,
     p: V3,
     k: V3,
+    kernel: Option<V3>,
 }
 
-/// A convex polygon (3 to 6 vertices, regular-ish) of size `size` at distance >= 0.3 sizes
-/// from p = the origin, random plane, random k.
-fn convex_poly(rng: &mut Rng) -> Poly {
-    let nv = 3 + rng.below(4) as usize;
-    let pts: Vec<[f64; 2]> = (0..nv)
-        .map(|j| {
-            let a = TAU * (j as f64 + rng.range(0.0, 0.5)) / nv as f64;
-            [a.cos(), a.sin()]
-        })
-        .collect();
+/// Fixed22 rounds each coordinate by up to 2^-23, which moves a vertex off the polygon's plane
+/// by up to about 2e-7: more than the constructor's planarity tolerance (1e-6 of the size) for
+/// polygons smaller than about 0.2 in a general plane, which it then refuses
+/// (`polygon.rs`, `fixed22_accepts_small_planar_polygons`, ignored until src/polygon.rs
+/// allows for the backend's resolution). The acceptance check counts the smaller ones apart.
+const MIN_FIXED_SIZE: f64 = 0.6;
+
+/// A planar polygon made on purpose, of size `size` in `[0.2, 1.5]` (times `scale`, which
+/// brings the configuration into the backend's coordinate range), at distance at least 0.3
+/// sizes from p = the origin (the well-conditioned regime), in a random plane, with a random
+/// weight axis: convex (3 to 8 vertices, the capacity), star-shaped (3 to 8, non-convex),
+/// regular stars (3 or 4 spikes: 6 or 8 vertices), L (6) and U (8) shapes, and near-degenerate
+/// ones: a sliver (thickness 1e-3 of the size), a vanishing edge (1e-4), a nearly collinear
+/// extra vertex (1e-4 off its edge).
+fn planar_poly(rng: &mut Rng, scale_to: f64) -> Poly {
+    let nv = 3 + rng.below(6) as usize;
+    let (kind, mut pts, kernel): (&str, Vec<[f64; 2]>, Option<[f64; 2]>) = match rng.below(8) {
+        0 | 1 => (
+            "convex",
+            (0..nv)
+                .map(|j| {
+                    let a = TAU * (j as f64 + rng.range(0.0, 0.5)) / nv as f64;
+                    [a.cos(), a.sin()]
+                })
+                .collect(),
+            Some([0.0, 0.0]),
+        ),
+        2 => {
+            // Star-shaped about the origin from 4 vertices on (angular gaps below pi); a
+            // triangle may leave the origin outside: its vertex average is inside.
+            let pts = star_shaped(rng, nv, 0.2);
+            let kernel = if nv == 3 {
+                [
+                    (pts[0][0] + pts[1][0] + pts[2][0]) / 3.0,
+                    (pts[0][1] + pts[1][1] + pts[2][1]) / 3.0,
+                ]
+            } else {
+                [0.0, 0.0]
+            };
+            ("star-shaped", pts, Some(kernel))
+        }
+        3 => (
+            "regular star",
+            star(3 + rng.below(2) as usize, rng.range(0.3, 0.7)),
+            Some([0.0, 0.0]),
+        ),
+        4 => ("L-shape", l_shape(), Some([-0.3, -0.3])),
+        5 => ("U-shape", u_shape(), None),
+        6 => {
+            // A sliver: a convex polygon flattened to 1e-3 of its size.
+            let pts = (0..nv)
+                .map(|j| {
+                    let a = TAU * (j as f64 + rng.range(0.0, 0.5)) / nv as f64;
+                    [a.cos(), 1e-3 * a.sin()]
+                })
+                .collect();
+            ("sliver", pts, Some([0.0, 0.0]))
+        }
+        _ => {
+            // A vanishing edge or a nearly collinear extra vertex on a convex polygon.
+            let n0 = nv.min(7);
+            let mut pts: Vec<[f64; 2]> = (0..n0)
+                .map(|j| {
+                    let a = TAU * (j as f64 + rng.range(0.0, 0.5)) / n0 as f64;
+                    [a.cos(), a.sin()]
+                })
+                .collect();
+            let j = rng.below(n0 as u64) as usize;
+            let (a, b) = (pts[j], pts[(j + 1) % n0]);
+            let kind = if rng.below(2) == 0 {
+                pts[j] = [b[0] + 1e-4 * (a[0] - b[0]), b[1] + 1e-4 * (a[1] - b[1])];
+                "vanishing edge"
+            } else {
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                // Off the edge toward the outside (the polygon stays convex).
+                pts.insert(j + 1, [mid[0] + 1e-4 * dy, mid[1] - 1e-4 * dx]);
+                "nearly collinear vertex"
+            };
+            // Still convex (a vertex moved along an edge, or pushed out of one): the vertex
+            // average is inside (the origin may not be: a triangle with a vanishing edge is a
+            // sliver).
+            let n = pts.len() as f64;
+            let avg = pts
+                .iter()
+                .fold([0.0, 0.0], |s, q| [s[0] + q[0] / n, s[1] + q[1] / n]);
+            (kind, pts, Some(avg))
+        }
+    };
+    // Convex and star outlines as generated run counter-clockwise; a random winding.
+    if rng.below(2) == 0 {
+        pts.reverse();
+    }
     let size = rng.range(0.2, 1.5);
     let dist = size * rng.range(1.3, 4.0);
     let center = scale(rng.dir(), dist);
+    // The same random plane for the outline and the kernel point.
+    let mut all = pts.clone();
+    all.extend(kernel);
+    let placed = place(rng, &all, center, size);
+    let kernel = kernel.map(|_| scale(placed[pts.len()], scale_to));
     Poly {
-        verts: place(rng, &pts, center, size),
+        kind,
+        verts: placed[..pts.len()]
+            .iter()
+            .map(|&x| scale(x, scale_to))
+            .collect(),
         p: [0.0; 3],
         k: rng.dir(),
+        kernel,
     }
 }
 
@@ -109,25 +214,45 @@ fn diff(a: f64, b: f64) -> f64 {
     abs_err(a, b).max(abs_err(b, a))
 }
 
-/// `true` if the jump over `b - h .. b + h` is within twice the larger neighbouring step
-/// (`b + h .. b + 3h`, `b - 3h .. b - h`) plus `noise`: continuous at `b` to the resolution of
-/// the step.
-fn continuous(f: &dyn Fn(f64) -> f64, b: f64, h: f64, noise: f64) -> Result<(), String> {
-    let (m3, m1, p1, p3) = (f(b - 3.0 * h), f(b - h), f(b + h), f(b + 3.0 * h));
-    let jump = diff(p1, m1);
-    let slope = diff(p3, p1).max(diff(m1, m3));
-    if jump <= 2.0 * slope + noise {
+/// Continuity at `b` to the resolution of the backend: `f` at the `2 N` points
+/// `b + (i + 1/2) h`, `i = -N..N`; the step across `b` must be within twice the largest other
+/// step (the local slope and the backend's rounding noise, measured around `b`) plus `floor`,
+/// the smallest jump detected, far below the backend's accuracy bound: 1e-14 for f64, 1e-6 for
+/// f32 (half its bound), 1e-4 for Fast32 and 2e-4 for Fixed22 (a tenth and a fifth of 1/1024).
+/// The floors are 4 to 6 times the largest excess `step - 2 x other` measured over 16 384
+/// cases per backend (2.2e-16, 1.8e-7, 2.4e-5, 3.6e-5); the step `h` is 1e-4 / (m + 1) (1e-6
+/// / (m + 1) for f64), so the slope term stays small at every m. The old check (a step of 1e-2
+/// and an allowance of 4/1024 for Fast32 and Fixed22) let a jump of 4e-3 through.
+fn continuous(f: &dyn Fn(f64) -> f64, b: f64, h: f64, floor: f64) -> Result<(), String> {
+    const N: usize = 4;
+    let ys: Vec<f64> = (0..2 * N)
+        .map(|i| f(b + (i as f64 - N as f64 + 0.5) * h))
+        .collect();
+    let steps: Vec<f64> = ys.windows(2).map(|w| diff(w[1], w[0])).collect();
+    let cross = steps[N - 1];
+    let other = steps
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| i != N - 1)
+        .fold(0.0f64, |m, (_, &d)| if d > m || d.is_nan() { d } else { m });
+    if cross <= 2.0 * other + floor {
         Ok(())
     } else {
         Err(format!(
-            "jump {jump:.3e} at {b} (h {h:e}) > 2 x slope {slope:.3e} + {noise:e}: values \
-             {m3:e} {m1:e} | {p1:e} {p3:e}"
+            "step {cross:.3e} across {b} (h {h:e}) > 2 x the largest other step {other:.3e} + \
+             {floor:e}: values {ys:?}"
         ))
     }
 }
-
 macro_rules! properties {
-    ($modname:ident, $T:ty, tol = $tol:expr, per_m = $per_m:expr, step = $step:expr) => {
+    (
+        $modname:ident,
+        $T:ty,
+        tol = $tol:expr,
+        per_m = $per_m:expr,
+        step = $step:expr,
+        floor = $floor:expr
+    ) => {
         mod $modname {
             use super::*;
             type T = $T;
@@ -135,13 +260,21 @@ macro_rules! properties {
             fn tol(m: u32) -> f64 {
                 $tol + m as f64 * $per_m
             }
-            /// The continuity step (large enough to stand above the backend's rounding).
+            /// The continuity step at m = 0 (divided by m + 1: the models' slope grows with m).
             const STEP: f64 = $step;
+            /// The smallest jump the continuity check detects (see [`continuous`]).
+            const FLOOR: f64 = $floor;
             /// Scale applied to every position so the configuration fits the backend's
             /// coordinate range (1 for the float types; 1/4 for `Fixed22`, whose positions
             /// are limited to [-4, 4]; the models are scale invariant).
             fn k() -> f64 {
                 T::COORDINATE_LIMIT.min(16.0) / 16.0
+            }
+            /// The scale of the polygon configurations (within 7.5 of the origin): 1/2 for
+            /// `Fixed22`, as large as its range allows (small polygons lose planarity to its
+            /// rounding: see [`MIN_FIXED_SIZE`]).
+            fn pk() -> f64 {
+                T::COORDINATE_LIMIT.min(8.0) / 8.0
             }
             /// A direction's length scale clamped into what the backend represents (directions
             /// of any length are valid; `Fixed22` holds lengths in [2^-8, 2^8] exactly enough).
@@ -177,6 +310,41 @@ macro_rules! properties {
                     cases: cases(),
                     failure_persistence: None,
                     ..ProptestConfig::default()
+                }
+            }
+
+            /// The planar polygons of the properties reach the models on this backend (none
+            /// silently skipped for want of range or planarity): every shape is accepted by the
+            /// constructor in at least 95 % of 2000 draws.
+            #[test]
+            fn planar_polygons_are_accepted() {
+                let mut rng = Rng::new(0x91a7);
+                let mut by: std::collections::BTreeMap<&str, (usize, usize)> = Default::default();
+                let mut small = (0, 0);
+                for _ in 0..2000 {
+                    let c = planar_poly(&mut rng, pk());
+                    let ok = poly::<T>(&c.verts).is_some() as usize;
+                    if T::COORDINATE_LIMIT < f64::MAX && diameter(&c.verts) < MIN_FIXED_SIZE {
+                        small.0 += 1;
+                        small.1 += ok;
+                        continue;
+                    }
+                    let e = by.entry(c.kind).or_default();
+                    e.0 += 1;
+                    e.1 += ok;
+                }
+                println!(
+                    "[props] {}: diameter below {MIN_FIXED_SIZE} (Fixed22 only): {} of {} accepted",
+                    stringify!($T),
+                    small.1,
+                    small.0
+                );
+                // Fixed22: most of the small ones too (until src/polygon.rs allows for its
+                // rounding, 10 to 20 % of them are refused as not planar).
+                assert!(small.1 * 100 >= small.0 * 75, "small polygons: {small:?}");
+                println!("[props] {}: accepted/drawn by shape {:?}", stringify!($T), by);
+                for (kind, (n, ok)) in by {
+                    assert!(ok * 100 >= n * 95, "{kind}: {ok} of {n} accepted");
                 }
             }
 
@@ -222,8 +390,7 @@ macro_rules! properties {
                     prop_assert!(in01(sph.lambert_hermite(v(p), v(n))));
                     prop_assert!(in01(sph.phong(&l, v(p), v(n))));
                     // A polygon (possibly seen edge-on or from very close).
-                    let mut pc = convex_poly(&mut rng);
-                    pc.verts = pc.verts.iter().map(|&x| scale(x, sp / 4.0)).collect();
+                    let pc = planar_poly(&mut rng, sp / 4.0);
                     let pp = scale(pc.verts[0], rng.range(0.0, 1.2));
                     if let Some(pl) = poly::<T>(&pc.verts) {
                         prop_assert!(in01(pl.lambert(v(pp), v(n))));
@@ -255,7 +422,7 @@ macro_rules! properties {
                 fn winding(seed in any::<u64>(), mi in 0usize..10) {
                     let m = PROP_MS[mi];
                     let mut rng = Rng::new(seed);
-                    let c = convex_poly(&mut rng);
+                    let c = planar_poly(&mut rng, pk());
                     let rev: Vec<V3> = c.verts.iter().rev().copied().collect();
                     let (Some(a), Some(b)) = (poly::<T>(&c.verts), poly::<T>(&rev)) else {
                         return Ok(());
@@ -317,9 +484,7 @@ macro_rules! properties {
                         prop_assert!(diff(a, b) <= 2.0 * t_ + f64_change(fa, fb), "sphere {} {}", a, b);
                     }
                     // Polygon.
-                    let mut c = convex_poly(&mut rng);
-                    c.verts = c.verts.iter().map(|&x| scale(x, k())).collect();
-                    c.p = scale(c.p, k());
+                    let c = planar_poly(&mut rng, pk());
                     let moved: Vec<V3> = c.verts.iter().map(|&x| mv(&r, t, x)).collect();
                     let (p2, k2) = (mv(&r, t, c.p), rot(&r, c.k));
                     let rnd = |vs: &[V3]| vs.iter().map(|&x| rdv::<T>(x)).collect::<Vec<_>>();
@@ -337,12 +502,14 @@ macro_rules! properties {
                     }
                 }
 
-                /// A quad split along a diagonal: the parts add up (Lambert, Phong, solid angle).
+                /// A quad split along a diagonal, and an L-shape split into its two rectangles:
+                /// the parts add up (Lambert, Phong, solid angle).
                 #[test]
                 fn split_polygon(seed in any::<u64>(), mi in 0usize..10) {
                     let m = PROP_MS[mi];
                     let mut rng = Rng::new(seed);
-                    let mut c = convex_poly(&mut rng);
+                    let kscale = pk();
+                    let mut c = planar_poly(&mut rng, kscale);
                     c.verts.truncate(3);
                     // A fourth vertex making a convex quad: reflect v1 across the v0-v2 midpoint.
                     let mid = scale(add(c.verts[0], c.verts[2]), 0.5);
@@ -361,6 +528,33 @@ macro_rules! properties {
                     prop_assert!(diff(q.phong(&l, p, k).to_f64(), sum) <= 3.0 * t, "phong {} vs {}", q.phong(&l, p, k).to_f64(), sum);
                     let sum = a.clipped_solid_angle(p, k).to_f64() + b.clipped_solid_angle(p, k).to_f64();
                     prop_assert!(diff(q.clipped_solid_angle(p, k).to_f64(), sum) <= 3.0 * TAU * t);
+                    // The L-shape (one reflex corner) and its two rectangles, in one placement.
+                    let pts: Vec<[f64; 2]> = l_shape()
+                        .into_iter()
+                        .chain([[-0.5, -0.1], [-0.1, -0.1]])
+                        .collect();
+                    let size = rng.range(0.2, 1.5);
+                    let lcen = scale(rng.dir(), size * rng.range(1.3, 4.0));
+                    let placed: Vec<V3> = place(&mut rng, &pts, lcen, size)
+                        .into_iter()
+                        .map(|x| scale(x, kscale))
+                        .collect();
+                    let (lv, [e0, e1]) = (&placed[..6], [placed[6], placed[7]]);
+                    // l_shape(): 0 (-0.5, -0.5), 1 (0.7, -0.5), 2 (0.7, -0.1), 3 (-0.1, -0.1),
+                    // 4 (-0.1, 0.6), 5 (-0.5, 0.6); e0 (-0.5, -0.1), e1 = vertex 3.
+                    let _ = e1;
+                    let ra = vec![lv[0], lv[1], lv[2], e0];
+                    let rb = vec![e0, lv[3], lv[4], lv[5]];
+                    let (Some(ql), Some(a), Some(b)) = (poly::<T>(lv), poly::<T>(&ra), poly::<T>(&rb)) else {
+                        return Ok(());
+                    };
+                    let kk = v(rng.dir());
+                    let sum = a.lambert(p, kk).to_f64() + b.lambert(p, kk).to_f64();
+                    prop_assert!(diff(ql.lambert(p, kk).to_f64(), sum) <= 3.0 * t, "L lambert");
+                    let sum = a.phong(&l, p, kk).to_f64() + b.phong(&l, p, kk).to_f64();
+                    prop_assert!(diff(ql.phong(&l, p, kk).to_f64(), sum) <= 3.0 * t, "L phong m={}", m);
+                    let sum = a.clipped_solid_angle(p, kk).to_f64() + b.clipped_solid_angle(p, kk).to_f64();
+                    prop_assert!(diff(ql.clipped_solid_angle(p, kk).to_f64(), sum) <= 3.0 * TAU * t, "L solid angle");
                 }
 
                 /// Phong with m = 1 and r = n is the Lambert model of the same source; the cap at
@@ -377,11 +571,11 @@ macro_rules! properties {
                     prop_assert!(diff(h.phong_cos(&one, v(n)).to_f64(), h.lambert_cos(v(n)).to_f64()) <= 2.0 * t);
                     let c = cap::<T>(axis, sigma);
                     prop_assert!(diff(c.phong(&one, v(n)).to_f64(), c.lambert(v(n)).to_f64()) <= 2.0 * t);
-                    let (center, radius) = (rng.sdir(), rng.range(0.1, 1.0));
+                    let (center, radius) = (scale(rng.sdir(), k()), k() * rng.range(0.1, 1.0));
                     let p = add(center, scale(rng.dir(), radius * rng.range(1.05, 8.0)));
                     let s = SphereLight::<T>::new(v(center), T::from_f64(radius)).unwrap();
                     prop_assert!(diff(s.phong(&one, v(p), v(n)).to_f64(), s.lambert(v(p), v(n)).to_f64()) <= 2.0 * t);
-                    let pc = convex_poly(&mut rng);
+                    let pc = planar_poly(&mut rng, pk());
                     if let Some(pl) = poly::<T>(&pc.verts) {
                         let (pp, k) = (v(pc.p), v(pc.k));
                         prop_assert!(diff(pl.phong(&one, pp, k).to_f64(), pl.lambert(pp, k).to_f64()) <= 2.0 * t);
@@ -392,8 +586,9 @@ macro_rules! properties {
                     prop_assert!(diff(half.phong(&l, v(n)).to_f64(), h.phong_const(&l, v(n)).to_f64()) <= 2.0 * tol(m));
                 }
 
-                /// Monotone in sigma, in a sphere's radius and in a polygon grown about its
-                /// centroid (the source only gains directions; the weights are >= 0).
+                /// Monotone in sigma, in a sphere's radius and in a polygon grown about a point
+                /// from which it is star-shaped (the source only gains directions; the weights
+                /// are >= 0).
                 #[test]
                 fn monotone_in_source_size(seed in any::<u64>(), mi in 0usize..10) {
                     let m = PROP_MS[mi];
@@ -408,22 +603,25 @@ macro_rules! properties {
                     let (c1, c2) = (cap::<T>(axis, s1), cap::<T>(axis, s2));
                     prop_assert!(c1.lambert(v(n)).to_f64() <= c2.lambert(v(n)).to_f64() + t);
                     prop_assert!(c1.phong(&l, v(n)).to_f64() <= c2.phong(&l, v(n)).to_f64() + t);
-                    let center = scale(rng.dir(), 3.0);
-                    let (r1, r2) = (rng.range(0.1, 1.4), rng.range(1.4, 2.8));
+                    let center = scale(rng.dir(), 3.0 * k());
+                    let (r1, r2) = (k() * rng.range(0.1, 1.4), k() * rng.range(1.4, 2.8));
                     let p = [0.0; 3];
                     let a = SphereLight::<T>::new(v(center), T::from_f64(r1)).unwrap();
                     let b = SphereLight::<T>::new(v(center), T::from_f64(r2)).unwrap();
                     prop_assert!(a.lambert(v(p), v(n)).to_f64() <= b.lambert(v(p), v(n)).to_f64() + t);
                     prop_assert!(a.phong(&l, v(p), v(n)).to_f64() <= b.phong(&l, v(p), v(n)).to_f64() + t);
-                    let c = convex_poly(&mut rng);
-                    let nv = c.verts.len() as f64;
-                    let cen = scale(c.verts.iter().fold([0.0; 3], |s, &x| add(s, x)), 1.0 / nv);
+                    let c = planar_poly(&mut rng, pk());
+                    let Some(cen) = c.kernel else {
+                        return Ok(());
+                    };
                     let f = rng.range(1.0, 1.3);
                     let big: Vec<V3> = c.verts.iter().map(|&x| add(cen, scale(sub(x, cen), f))).collect();
                     if let (Some(a), Some(b)) = (poly::<T>(&c.verts), poly::<T>(&big)) {
                         let (pp, k) = (v(c.p), v(c.k));
-                        prop_assert!(a.lambert(pp, k).to_f64() <= b.lambert(pp, k).to_f64() + t);
-                        prop_assert!(a.phong(&l, pp, k).to_f64() <= b.phong(&l, pp, k).to_f64() + t);
+                        let (x, y) = (a.lambert(pp, k).to_f64(), b.lambert(pp, k).to_f64());
+                        prop_assert!(x <= y + t, "{} lambert {} > {}: {:?}", c.kind, x, y, c);
+                        let (x, y) = (a.phong(&l, pp, k).to_f64(), b.phong(&l, pp, k).to_f64());
+                        prop_assert!(x <= y + t, "{} phong m={} {} > {}: {:?}", c.kind, m, x, y, c);
                     }
                 }
 
@@ -435,7 +633,7 @@ macro_rules! properties {
                     let m = PROP_MS[mi];
                     let mut rng = Rng::new(seed);
                     let l = lobe::<T>(m);
-                    let noise = 4.0 * tol(m);
+                    let (step, floor) = (STEP / (m as f64 + 1.0), FLOOR);
                     let sigma = rng.range(0.05, FRAC_PI_2 - 0.05);
                     let axis = rng.dir();
                     let perp = frame(axis).0;
@@ -444,22 +642,22 @@ macro_rules! properties {
                     let pho = |w: f64| c.phong(&l, v(rotate_toward(axis, perp, w))).to_f64();
                     let herm = |w: f64| c.lambert_hermite(v(rotate_toward(axis, perp, w))).to_f64();
                     for b in [FRAC_PI_2 - sigma, FRAC_PI_2, FRAC_PI_2 + sigma] {
-                        continuous(&lam, b, STEP, noise).map_err(|e| TestCaseError::fail(format!("cap_lambert: {e}")))?;
-                        continuous(&herm, b, STEP, noise).map_err(|e| TestCaseError::fail(format!("cap_lambert_hermite: {e}")))?;
-                        continuous(&pho, b, STEP, noise).map_err(|e| TestCaseError::fail(format!("phong_cap m={m}: {e}")))?;
+                        continuous(&lam, b, step, floor).map_err(|e| TestCaseError::fail(format!("cap_lambert: {e}")))?;
+                        continuous(&herm, b, step, floor).map_err(|e| TestCaseError::fail(format!("cap_lambert_hermite: {e}")))?;
+                        continuous(&pho, b, step, floor).map_err(|e| TestCaseError::fail(format!("phong_cap m={m}: {e}")))?;
                     }
-                    continuous(&pho, sigma, STEP, noise).map_err(|e| TestCaseError::fail(format!("phong_cap m={m} at w=sigma: {e}")))?;
+                    continuous(&pho, sigma, step, floor).map_err(|e| TestCaseError::fail(format!("phong_cap m={m} at w=sigma: {e}")))?;
                     // Hemisphere lights at w = pi/2.
                     let h = hemi::<T>(axis);
                     let hc = |w: f64| h.lambert_cos(v(rotate_toward(axis, perp, w))).to_f64();
                     let hp = |w: f64| h.phong_const(&l, v(rotate_toward(axis, perp, w))).to_f64();
                     let hpc = |w: f64| h.phong_cos(&l, v(rotate_toward(axis, perp, w))).to_f64();
                     for (name, f) in [("hemi_cos", &hc as &dyn Fn(f64) -> f64), ("phong_hemi_const", &hp), ("phong_hemi_cos", &hpc)] {
-                        continuous(f, FRAC_PI_2, STEP, noise).map_err(|e| TestCaseError::fail(format!("{name} m={m}: {e}")))?;
+                        continuous(f, FRAC_PI_2, step, floor).map_err(|e| TestCaseError::fail(format!("{name} m={m}: {e}")))?;
                     }
                     // A polygon vertex crossing the horizon: k rotated about an axis
                     // perpendicular to (v0 - p) so that v0 sits on the horizon at angle 0.
-                    let pc = convex_poly(&mut rng);
+                    let pc = planar_poly(&mut rng, pk());
                     if let Some(pl) = poly::<T>(&pc.verts) {
                         let u0 = normalize(sub(pc.verts[0], pc.p));
                         let k0 = normalize(cross(u0, rng.dir()));
@@ -467,8 +665,8 @@ macro_rules! properties {
                         let kk = |a: f64| v(rotate_toward(k0, u0, a));
                         let pl_l = |a: f64| pl.lambert(v(pc.p), kk(a)).to_f64();
                         let pl_p = |a: f64| pl.phong(&l, v(pc.p), kk(a)).to_f64();
-                        continuous(&pl_l, 0.0, STEP, noise).map_err(|e| TestCaseError::fail(format!("polygon_lambert: {e}")))?;
-                        continuous(&pl_p, 0.0, STEP, noise).map_err(|e| TestCaseError::fail(format!("phong_polygon m={m}: {e}")))?;
+                        continuous(&pl_l, 0.0, step, floor).map_err(|e| TestCaseError::fail(format!("polygon_lambert: {e}")))?;
+                        continuous(&pl_p, 0.0, step, floor).map_err(|e| TestCaseError::fail(format!("phong_polygon m={m}: {e}")))?;
                     }
                 }
 
@@ -484,7 +682,7 @@ macro_rules! properties {
                     let sigma = rng.range(0.05, FRAC_PI_2);
                     let c = cap::<T>(axis, sigma);
                     let h = hemi::<T>(axis);
-                    let pc = convex_poly(&mut rng);
+                    let pc = planar_poly(&mut rng, pk());
                     let pl = poly::<T>(&pc.verts);
                     let kdir = normalize(add(normalize(pc.verts[0]), scale(pc.k, 0.3)));
                     let models: Vec<(&str, Box<dyn Fn(u32) -> f64>)> = vec![
@@ -505,20 +703,35 @@ macro_rules! properties {
     };
 }
 
-properties!(f64_props, f64, tol = 1e-12, per_m = 1e-15, step = 1e-6);
-properties!(f32_props, f32, tol = TOL_F32, per_m = EPS_F32, step = 1e-3);
+properties!(
+    f64_props,
+    f64,
+    tol = 1e-12,
+    per_m = 1e-15,
+    step = 1e-6,
+    floor = 1e-14
+);
+properties!(
+    f32_props,
+    f32,
+    tol = TOL_F32,
+    per_m = EPS_F32,
+    step = 1e-4,
+    floor = 1e-6
+);
 properties!(
     fast32_props,
     Fast32,
     tol = TOL_FAST32,
     per_m = 0.0,
-    step = 1e-2
+    step = 1e-4,
+    floor = 1e-4
 );
-// The fixed-point backend, once it implements `Real`, is one more line:
 properties!(
     fixed_props,
     arealight::Fixed22,
     tol = 1.0 / 1024.0,
     per_m = 0.0,
-    step = 1e-2
+    step = 1e-4,
+    floor = 2e-4
 );

@@ -290,3 +290,22 @@ fn polygons_two_methods() {
     }
     check_all(&[(&lam, 1e-12), (&pho, 1e-12)]);
 }
+
+/// The f64 error budget (`F64_BUDGET` in tests/common) is one table, checked here as a whole:
+/// ids unique, every tolerance at least its measured error and at most 100 times it.
+#[test]
+fn f64_budget_is_consistent() {
+    let mut ids = std::collections::BTreeSet::new();
+    for r in F64_BUDGET {
+        assert!(ids.insert(r.id), "duplicate f64 budget row {:?}", r.id);
+        let tol = tol_f64(r.id);
+        println!(
+            "[budget] {:<70} measured {:.1e}  tolerance {:.0e} ({:.1}x)  against {}",
+            r.id,
+            r.measured,
+            tol,
+            tol / r.measured,
+            r.against
+        );
+    }
+}

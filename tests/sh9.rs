@@ -129,7 +129,11 @@ fn f64_vs_quadrature() {
             }
         }
     }
-    check_all(&[(&e_irr, TOL_F64), (&e_disc, TOL_F64), (&e_sg, TOL_F64)]);
+    check_all(&[
+        (&e_irr, tol_f64("sh9_irradiance")),
+        (&e_disc, tol_f64("sh9_disc_irradiance")),
+        (&e_sg, tol_f64("Sh9::sky_ground")),
+    ]);
 }
 
 /// For alpha <= pi/2 the disc's SH9 irradiance approximates pi * cap_lambert; the difference is

@@ -51,8 +51,8 @@ impl FixedPoint {
 /// runs right (`dy = 0, dx > 0`), a left edge runs up (`dy < 0`).
 #[inline]
 pub const fn is_top_left(a: FixedPoint, b: FixedPoint) -> bool {
-    let (dx, dy) = (b.x - a.x, b.y - a.y);
-    (dy == 0 && dx > 0) || dy < 0
+    // Compared, not subtracted: total for every pair of coordinates.
+    (b.y == a.y && b.x > a.x) || b.y < a.y
 }
 
 /// The edge function of `a -> b` at `p`: `(b.x - a.x)(p.y - a.y) - (b.y - a.y)(p.x - a.x)`,
@@ -123,7 +123,7 @@ impl EdgeTriangle {
     /// Cost: 2 multiplications for the area, 3 comparisons.
     pub fn new(v: [FixedPoint; 3], cull: Cull) -> Option<Self> {
         if v.iter()
-            .any(|p| p.x.abs() > MAX_COORD || p.y.abs() > MAX_COORD)
+            .any(|p| p.x.unsigned_abs() > MAX_COORD as u32 || p.y.unsigned_abs() > MAX_COORD as u32)
         {
             return None;
         }
@@ -207,9 +207,9 @@ impl EdgeTriangle {
         let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
         let last = |m: i32| (m - SUBPIXEL / 2).div_euclid(SUBPIXEL);
         let x0 = first(lo(v[0].x, v[1].x, v[2].x)).max(0);
-        let x1 = last(hi(v[0].x, v[1].x, v[2].x)).min(width - 1);
+        let x1 = last(hi(v[0].x, v[1].x, v[2].x)).min(width.saturating_sub(1));
         let y0 = first(lo(v[0].y, v[1].y, v[2].y)).max(row0);
-        let y1 = last(hi(v[0].y, v[1].y, v[2].y)).min(row1 - 1);
+        let y1 = last(hi(v[0].y, v[1].y, v[2].y)).min(row1.saturating_sub(1));
         if x0 > x1 || y0 > y1 {
             None
         } else {

@@ -1,13 +1,27 @@
 //! The fuzz targets' bodies, shared by the bit-pattern harness `tests/fuzz_bits.rs` (runs in
 //! `cargo test`) and the cargo-fuzz crate `fuzz/` (libFuzzer, nightly): every public
 //! constructor and per-sample function of one model family, fed arbitrary f32 bit patterns
-//! (NaN, infinities, subnormals, huge values) and exponents, on f64 (the same values widened),
-//! f32 and Fast32. A target fails (panics) if the library panics or a per-sample function
-//! returns NaN or infinity.
+//! (NaN, infinities, subnormals, huge values) and exponents, on every backend: f64 (the same
+//! values widened), f32, Fast32 and Fixed22 (its positions folded into its coordinate range by
+//! a power of two, except where the input asks for the raw value: both paths are fuzzed). A
+//! target fails (panics) if the library panics or a per-sample function returns NaN or
+//! infinity.
+//!
+//! Polygons come two ways: raw vertices (rarely planar, so mostly refused), and planar ones
+//! built on purpose ([`planar_polygon`]): convex, star-shaped, regular stars, L and U shapes,
+//! 3 to 8 vertices (the capacity), placed in an arbitrary plane, optionally near-degenerate
+//! (slivers, a vanishing edge, a nearly collinear vertex, tiny or huge), with the shading point
+//! anywhere, near the plane or near an edge. The rasterizer is a family too ([`Family::Raster`]):
+//! arbitrary cameras, meshes, transforms, band sizes and raw edge-function inputs.
 #![allow(dead_code)]
 
+use arealight::raster::edge::{edge_function, is_top_left, MAX_COORD};
+use arealight::raster::{
+    draw, Affine, Band, Camera, Cull, DrawOptions, EdgeTriangle, EncodeTable, Encoding, FixedPoint,
+    Lit, Material, Mesh, PreparedMesh, PreparedVertex, Projection, Rgb565, Shading, Vertex,
+};
 use arealight::{
-    lune_normalization, try_lune_normalization, CapLight, Decay, DistanceFalloff, Fast32,
+    lune_normalization, try_lune_normalization, CapLight, Decay, DistanceFalloff, Fast32, Fixed22,
     HemisphereLight, LightFrame, LineLight, OvercastSky, ParallelogramLight, PhongLobe,
     PolygonLight, Real, Rgb, Sh9, SkyGround, SphereLight, Superellipse, Uberlight, Vec3,
 };
@@ -22,9 +36,11 @@ pub enum Family {
     Sh9,
     Line,
     Shaping,
+    Raster,
+    RasterEdges,
 }
 
-pub const FAMILIES: [Family; 7] = [
+pub const FAMILIES: [Family; 9] = [
     Family::Hemisphere,
     Family::Cap,
     Family::Polygon,
@@ -32,6 +48,8 @@ pub const FAMILIES: [Family; 7] = [
     Family::Sh9,
     Family::Line,
     Family::Shaping,
+    Family::Raster,
+    Family::RasterEdges,
 ];
 
 /// Reads f32 values (4 little-endian bytes each) and exponents from the fuzz input; past its
@@ -55,6 +73,14 @@ impl<'a> Input<'a> {
     }
     pub fn f32(&mut self) -> f32 {
         f32::from_bits(self.u32())
+    }
+    /// A fraction in `[0, 1)` from the next word.
+    pub fn unit(&mut self) -> f64 {
+        (self.u32() >> 8) as f64 / (1u32 << 24) as f64
+    }
+    /// A choice among `n`.
+    pub fn below(&mut self, n: u32) -> u32 {
+        self.u32() % n
     }
     /// A Phong exponent: mostly below 2048 (cheap), sometimes MAX_EXPONENT and just above it.
     pub fn m(&mut self) -> u32 {
@@ -80,9 +106,44 @@ struct Src<'a, 'b> {
     inp: &'b mut Input<'a>,
 }
 
+/// `x` brought within the backend's coordinate limit (Fixed22: [-4, 4]) by a power of two,
+/// when it is finite and beyond it; unchanged for the float backends.
+fn fold<T: Real>(x: f64) -> f64 {
+    let lim = T::COORDINATE_LIMIT;
+    if !x.is_finite() || x.abs() <= lim {
+        return x;
+    }
+    let k = (x.abs() / lim).log2().ceil() as i32;
+    x * 2f64.powi(-k.min(1000))
+}
+
 impl Src<'_, '_> {
     fn s<T: Real>(&mut self) -> T {
         T::from_f64(self.inp.f32() as f64)
+    }
+    /// A position coordinate: the f32 value, folded into the backend's coordinate range
+    /// unless its lowest bit is set (the raw value, out of range for Fixed22: refused by the
+    /// constructors, saturated in the per-sample functions).
+    fn ps<T: Real>(&mut self) -> T {
+        let x = self.inp.f32();
+        if x.to_bits() & 1 == 1 {
+            T::from_f64(x as f64)
+        } else {
+            T::from_f64(fold::<T>(x as f64))
+        }
+    }
+    /// A position.
+    fn p<T: Real>(&mut self) -> Vec3<T> {
+        Vec3::new(self.ps(), self.ps(), self.ps())
+    }
+    /// A Phong exponent for `T`: mostly within its limit (Fixed22: 255), sometimes above.
+    fn m<T: Real>(&mut self) -> u32 {
+        let m = self.inp.m();
+        if m > T::MAX_PHONG_EXPONENT && m & 2 == 0 {
+            m % (T::MAX_PHONG_EXPONENT + 1)
+        } else {
+            m
+        }
     }
     fn v<T: Real>(&mut self) -> Vec3<T> {
         Vec3::new(self.s(), self.s(), self.s())
@@ -97,6 +158,193 @@ pub fn run(family: Family, data: &[u8]) {
     run_t::<f64>(family, data);
     run_t::<f32>(family, data);
     run_t::<Fast32>(family, data);
+    run_t::<Fixed22>(family, data);
+}
+
+std::thread_local! {
+    /// Polygons that passed the constructor and reached the shading code on this thread, f64
+    /// and Fixed22 runs, by vertex count (index 8: 8 or more).
+    static SHADED: std::cell::Cell<[[usize; 9]; 2]> = const { std::cell::Cell::new([[0; 9]; 2]) };
+}
+
+/// The polygons of the polygon and moments families that reached the shading code on this
+/// thread so far, `[f64, Fixed22]`, by vertex count (index 8: 8 or more).
+pub fn shaded_counts() -> [[usize; 9]; 2] {
+    SHADED.with(|c| c.get())
+}
+
+/// A planar polygon made on purpose from the input, with its shading point: the shape (convex
+/// k-gon, star-shaped, regular star, L, U), the vertex count (3 to 8), an optional
+/// near-degeneracy (sliver, a vanishing edge, a nearly collinear extra vertex, tiny, huge), an
+/// arbitrary plane (origin, orientation, in-plane rotation, size) and the shading point
+/// (anywhere, near the plane over the polygon, or near an edge). Computed in f64, then the
+/// whole configuration scaled by a power of two into the backend's coordinate range and
+/// rounded to `T` (planar to the constructor's tolerance, except where a degeneracy goes below
+/// `T`'s resolution: then the constructor refuses, which is fine too).
+pub fn planar_polygon<T: Real>(inp: &mut Input<'_>) -> (Vec<Vec3<T>>, Vec3<T>) {
+    use std::f64::consts::{PI, TAU};
+    let shape = inp.below(5);
+    let k = 3 + inp.below(6) as usize; // 3..=8
+    let mut pts: Vec<[f64; 2]> = match shape {
+        // Convex: k angles with jitter.
+        0 => (0..k)
+            .map(|j| {
+                let a = TAU * (j as f64 + 0.8 * inp.unit()) / k as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect(),
+        // Star-shaped about the origin: random radii, may be non-convex.
+        1 => (0..k)
+            .map(|j| {
+                let a = TAU * (j as f64 + 0.8 * inp.unit()) / k as f64;
+                let r = 0.05 + 0.95 * inp.unit();
+                [r * a.cos(), r * a.sin()]
+            })
+            .collect(),
+        // A regular star of k / 2 spikes (k even, 6 or 8; else 4 vertices: a 2-spike "bow").
+        2 => {
+            let spikes = (k / 2).max(2);
+            let ri = 0.05 + 0.9 * inp.unit();
+            (0..2 * spikes)
+                .map(|j| {
+                    let a = PI * j as f64 / spikes as f64;
+                    let r = if j % 2 == 0 { 1.0 } else { ri };
+                    [r * a.cos(), r * a.sin()]
+                })
+                .collect()
+        }
+        // L-shape (6 vertices), the notch's depth from the input.
+        3 => {
+            let t = 0.05 + 0.9 * inp.unit();
+            vec![
+                [-0.5, -0.5],
+                [0.7, -0.5],
+                [0.7, -0.5 + t],
+                [-0.5 + t, -0.5 + t],
+                [-0.5 + t, 0.6],
+                [-0.5, 0.6],
+            ]
+        }
+        // U-shape (8 vertices, two reflex corners).
+        _ => {
+            let t = 0.05 + 0.9 * inp.unit();
+            vec![
+                [-0.6, -0.5],
+                [0.6, -0.5],
+                [0.6, 0.6],
+                [0.3, 0.6],
+                [0.3, -0.5 + t],
+                [-0.3, -0.5 + t],
+                [-0.3, 0.6],
+                [-0.6, 0.6],
+            ]
+        }
+    };
+    // Near-degeneracies, at a scale 10^-e, e in 1..=12.
+    let tiny = 10f64.powi(-(1 + inp.below(12) as i32));
+    let mut scale_all = 1.0;
+    match inp.below(8) {
+        0 => pts.iter_mut().for_each(|q| q[1] *= tiny), // sliver
+        1 => {
+            // Vertex j moved to within `tiny` of vertex j + 1 (a vanishing edge).
+            let j = inp.below(pts.len() as u32) as usize;
+            let nx = pts[(j + 1) % pts.len()];
+            pts[j] = [
+                nx[0] + tiny * (pts[j][0] - nx[0]),
+                nx[1] + tiny * (pts[j][1] - nx[1]),
+            ];
+        }
+        2 if pts.len() < 8 => {
+            // An extra vertex on an edge, `tiny` off the line (nearly collinear).
+            let j = inp.below(pts.len() as u32) as usize;
+            let (a, b) = (pts[j], pts[(j + 1) % pts.len()]);
+            let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            pts.insert(j + 1, [mid[0] - tiny * dy, mid[1] + tiny * dx]);
+        }
+        3 => scale_all = tiny,       // tiny polygon
+        4 => scale_all = 1.0 / tiny, // huge polygon (beyond f32 for e > 38: not here)
+        _ => {}
+    }
+    // The plane: an orthonormal frame from an input direction, an in-plane rotation, origin,
+    // size.
+    let dir = [inp.f32() as f64, inp.f32() as f64, inp.f32() as f64];
+    let len = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]).sqrt();
+    let nrm = if len.is_finite() && len > 1e-30 {
+        [dir[0] / len, dir[1] / len, dir[2] / len]
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let helper = if nrm[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let cr = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let e1 = {
+        let c = cr(nrm, helper);
+        let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        [c[0] / l, c[1] / l, c[2] / l]
+    };
+    let e2 = cr(nrm, e1);
+    let rot = TAU * inp.unit();
+    let (c, sn) = (rot.cos(), rot.sin());
+    let size = scale_all * 10f64.powf(4.0 * inp.unit() - 2.0);
+    let origin = [
+        size * (8.0 * inp.unit() - 4.0),
+        size * (8.0 * inp.unit() - 4.0),
+        size * (8.0 * inp.unit() - 4.0),
+    ];
+    let place = |x: f64, y: f64, h: f64| {
+        let (x, y) = (c * x - sn * y, sn * x + c * y);
+        [
+            origin[0] + size * (x * e1[0] + y * e2[0] + h * nrm[0]),
+            origin[1] + size * (x * e1[1] + y * e2[1] + h * nrm[1]),
+            origin[2] + size * (x * e1[2] + y * e2[2] + h * nrm[2]),
+        ]
+    };
+    let verts: Vec<[f64; 3]> = pts.iter().map(|q| place(q[0], q[1], 0.0)).collect();
+    // The shading point: off the plane at a height from 10^-9 to 10 sizes, over the polygon's
+    // first vertex, near an edge's midpoint, or anywhere near.
+    let h = 10f64.powf(10.0 * inp.unit() - 9.0) * if inp.below(2) == 0 { 1.0 } else { -1.0 };
+    let p = match inp.below(4) {
+        0 => place(0.0, 0.0, h),
+        1 => place(pts[0][0], pts[0][1], h),
+        2 => {
+            let (a, b) = (pts[0], pts[1 % pts.len()]);
+            place(0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), h)
+        }
+        _ => place(
+            4.0 * inp.unit() - 2.0,
+            4.0 * inp.unit() - 2.0,
+            4.0 * inp.unit() - 2.0,
+        ),
+    };
+    // The whole configuration into the backend's coordinate range (a power of two: exact).
+    let big = verts
+        .iter()
+        .chain(std::iter::once(&p))
+        .flat_map(|q| q.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let k2 = if big > T::COORDINATE_LIMIT && big.is_finite() {
+        2f64.powi(-((big / T::COORDINATE_LIMIT).log2().ceil() as i32))
+    } else {
+        1.0
+    };
+    let to_t = |q: [f64; 3]| {
+        Vec3::new(
+            T::from_f64(q[0] * k2),
+            T::from_f64(q[1] * k2),
+            T::from_f64(q[2] * k2),
+        )
+    };
+    (verts.iter().map(|&q| to_t(q)).collect(), to_t(p))
 }
 
 pub fn run_t<T: Real>(family: Family, data: &[u8]) {
@@ -105,7 +353,7 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
     match family {
         Family::Hemisphere => {
             let (axis, n, c) = (s.v::<T>(), s.v::<T>(), s.s::<T>());
-            let m = s.inp.m();
+            let m = s.m::<T>();
             if let Ok(h) = HemisphereLight::new(axis) {
                 fin(h.lambert_const(n), "hemi_const");
                 fin(h.lambert_cos(n), "hemi_cos");
@@ -123,9 +371,9 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
             }
         }
         Family::Cap => {
-            let (axis, sigma, n, p) = (s.v::<T>(), s.s::<T>(), s.v::<T>(), s.v::<T>());
-            let (center, radius) = (s.v::<T>(), s.s::<T>());
-            let m = s.inp.m();
+            let (axis, sigma, n, p) = (s.v::<T>(), s.s::<T>(), s.v::<T>(), s.p::<T>());
+            let (center, radius) = (s.p::<T>(), s.ps::<T>());
+            let m = s.m::<T>();
             let lobe = PhongLobe::<T>::new(m).ok();
             if let Ok(c) = CapLight::new(axis, sigma) {
                 fin(c.lambert(n), "cap_lambert");
@@ -150,16 +398,34 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
             }
         }
         Family::Polygon | Family::Moments => {
-            let nv = 3 + (s.inp.u32() % 6) as usize;
-            let verts: Vec<Vec3<T>> = (0..nv).map(|_| s.v::<T>()).collect();
-            let (p, n, w, e) = (s.v::<T>(), s.v::<T>(), s.v::<T>(), s.v::<T>());
-            let m = s.inp.m();
+            // Raw vertices (one case in four), else a planar polygon made on purpose.
+            let (verts, p) = if s.inp.below(4) == 0 {
+                let nv = 3 + s.inp.below(6) as usize;
+                let verts: Vec<Vec3<T>> = (0..nv).map(|_| s.p::<T>()).collect();
+                (verts, s.p::<T>())
+            } else {
+                planar_polygon::<T>(s.inp)
+            };
+            let (n, w, e) = (s.v::<T>(), s.v::<T>(), s.v::<T>());
+            let m = s.m::<T>();
             let tol = s.s::<T>();
             let Ok(pl) = PolygonLight::<T, 8>::new(&verts) else {
                 // Also the constructor on the raw vertices with a small capacity.
                 let _ = PolygonLight::<T, 3>::new(&verts);
                 return;
             };
+            let backend = match std::any::type_name::<T>() {
+                "f64" => Some(0),
+                "arealight::real::fixed22::Fixed22" => Some(1),
+                _ => None,
+            };
+            if let Some(b) = backend {
+                SHADED.with(|c| {
+                    let mut n = c.get();
+                    n[b][verts.len().min(8)] += 1;
+                    c.set(n);
+                });
+            }
             if family == Family::Polygon {
                 fin(pl.lambert(p, n), "polygon_lambert");
                 fin(pl.clipped_solid_angle(p, n), "clipped_solid_angle");
@@ -205,9 +471,9 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
                 s.v::<T>(),
                 s.v::<T>(),
                 s.s::<T>(),
-                s.v::<T>(),
-                s.s::<T>(),
-                s.v::<T>(),
+                s.p::<T>(),
+                s.ps::<T>(),
+                s.p::<T>(),
                 s.v::<T>(),
             );
             let col = s.c::<T>();
@@ -224,9 +490,9 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
             }
         }
         Family::Line => {
-            let (a, b, p, n, r) = (s.v::<T>(), s.v::<T>(), s.v::<T>(), s.v::<T>(), s.v::<T>());
-            let (eu, ev) = (s.v::<T>(), s.v::<T>());
-            let m = s.inp.m();
+            let (a, b, p, n, r) = (s.p::<T>(), s.p::<T>(), s.p::<T>(), s.v::<T>(), s.v::<T>());
+            let (eu, ev) = (s.p::<T>(), s.p::<T>());
+            let m = s.m::<T>();
             let k = s.inp.u32() % 6;
             let _ = Decay::new(k);
             let lobe = PhongLobe::<T>::new(m).ok();
@@ -251,18 +517,24 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
             }
         }
         Family::Shaping => {
-            let se = [s.s::<T>(), s.s::<T>(), s.s::<T>(), s.s::<T>(), s.s::<T>()];
-            let fo = [
-                s.s::<T>(),
-                s.s::<T>(),
-                s.s::<T>(),
-                s.s::<T>(),
-                s.s::<T>(),
-                s.s::<T>(),
-                s.s::<T>(),
+            let se = [
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
             ];
-            let (origin, dir, up, pos) = (s.v::<T>(), s.v::<T>(), s.v::<T>(), s.v::<T>());
-            let z = s.s::<T>();
+            let fo = [
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+                s.ps::<T>(),
+            ];
+            let (origin, dir, up, pos) = (s.p::<T>(), s.v::<T>(), s.v::<T>(), s.p::<T>());
+            let z = s.ps::<T>();
             let shape = Superellipse::new(se[0], se[1], se[2], se[3], se[4]);
             if let Ok(sh) = &shape {
                 fin(sh.shape(pos), "superellipse_shape");
@@ -280,5 +552,185 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
                 fin(Uberlight::new(fr, sh, f).factor(pos), "uberlight factor");
             }
         }
+        Family::Raster => raster::<T>(&mut s),
+        // Integer only: once per input, not per backend.
+        Family::RasterEdges if T::EPSILON.to_f64() < 1e-10 => raster_edges(s.inp),
+        Family::RasterEdges => {}
+    }
+}
+
+std::thread_local! {
+    /// Encoding tables per backend and encoding (4097 encodes each: built once per thread).
+    static TABLES: std::cell::RefCell<Vec<(&'static str, Encoding, EncodeTable)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
+fn table<T: Real>(e: Encoding) -> EncodeTable {
+    let name = std::any::type_name::<T>();
+    TABLES.with(|t| {
+        let mut t = t.borrow_mut();
+        if let Some((_, _, tab)) = t.iter().find(|x| x.0 == name && x.1 == e) {
+            return tab.clone();
+        }
+        let tab = EncodeTable::new::<T>(e);
+        t.push((name, e, tab.clone()));
+        tab
+    })
+}
+
+/// The rasterizer's integer geometry on arbitrary sub-pixel coordinates (any `i32`): the edge
+/// function, the top-left rule, pixel centres, the triangle setup and its queries (over a
+/// small window of arbitrary rows).
+pub fn raster_edges(inp: &mut Input<'_>) {
+    let fp = |inp: &mut Input<'_>| FixedPoint::new(inp.u32() as i32, inp.u32() as i32);
+    let (a, b, c) = (fp(inp), fp(inp), fp(inp));
+    let _ = edge_function(a, b, c);
+    let _ = is_top_left(a, b);
+    let _ = FixedPoint::pixel_centre(inp.u32() as i32, inp.u32() as i32);
+    let cull = if inp.below(2) == 0 {
+        Cull::None
+    } else {
+        Cull::Back
+    };
+    if let Some(t) = EdgeTriangle::new([a, b, c], cull) {
+        let _ = (t.area2(), t.swapped(), t.vertices());
+        let _ = t.weights_at(c);
+        let _ = t.covers(fp(inp));
+        let (w, r0) = (1 + inp.below(64) as i32, inp.u32() as i32);
+        let r1 = r0.saturating_add(1 + inp.below(16) as i32);
+        let _ = t.pixel_bounds(w, r0, r1);
+        // Any window for the bounds alone (no loop over it).
+        let _ = t.pixel_bounds(inp.u32() as i32, inp.u32() as i32, inp.u32() as i32);
+        t.for_each_covered(w, r0, r1, |_, _, _| {});
+        t.for_each_span(w, r0, r1, |_, _, _| {});
+    }
+}
+
+/// `Real::to_fixed_i32` of the float backends overflows (a panic in debug builds) below
+/// `i32::MIN`, which the prepared path reaches with a vertex colour times exposure below -128
+/// (tests/fuzz_bits.rs, `to_fixed_i32_saturates`, ignored until src/real.rs is fixed). Until
+/// then the raster family draws with non-negative colours and exposure; set this to `false`
+/// with the fix.
+pub const NEGATIVE_COLOURS_OVERFLOW: bool = false;
+
+/// The rasterizer on arbitrary input: a camera, a mesh (indices possibly out of range), a
+/// transform, a material and options, drawn through bands of arbitrary height (a band as wide
+/// as the viewport, or not), by `draw` and by the prepared path; then the integer triangle
+/// setup on coordinates within the rasterizer's range ([`MAX_COORD`]).
+fn raster<T: Real>(s: &mut Src<'_, '_>) {
+    let cull = if s.inp.below(2) == 0 {
+        Cull::None
+    } else {
+        Cull::Back
+    };
+    // A camera.
+    let (eye, target, up) = (s.p::<T>(), s.p::<T>(), s.v::<T>());
+    let projection = if s.inp.below(2) == 0 {
+        Projection::Perspective { fov_y: s.s::<T>() }
+    } else {
+        Projection::Orthographic {
+            half_height: s.ps::<T>(),
+        }
+    };
+    let size = |inp: &mut Input<'_>| match inp.below(16) {
+        0 => 0,
+        1 => 5000,
+        _ => 1 + inp.below(40) as u16,
+    };
+    let (width, height) = (size(s.inp), size(s.inp));
+    let camera = Camera::new(eye, target, up, projection, width, height);
+    let camera = match (camera, s.inp.below(4)) {
+        (Ok(cam), 0) => cam.with_depth_range(s.s::<T>(), s.s::<T>()),
+        (c, _) => c,
+    };
+    // A mesh: 3 to 6 vertices, 1 to 4 triangles, an index out of range now and then.
+    let nv = 3 + s.inp.below(4) as usize;
+    let verts: Vec<Vertex<T>> = (0..nv)
+        .map(|_| Vertex::new(s.p::<T>(), s.v::<T>()))
+        .collect();
+    let nt = 1 + s.inp.below(4) as usize;
+    let tris: Vec<[u16; 3]> = (0..nt)
+        .map(|_| core::array::from_fn(|_| s.inp.below(nv as u32 + 1) as u16))
+        .collect();
+    let transform = match s.inp.below(4) {
+        0 => Affine::translation(s.p::<T>()),
+        1 => Affine::scale(s.v::<T>()),
+        2 => Affine::rotation(s.v::<T>(), s.s::<T>()),
+        _ => Ok(Affine::identity()),
+    }
+    .unwrap_or_else(|_| Affine::identity());
+    let light = HemisphereLight::new(s.v::<T>())
+        .unwrap_or_else(|_| HemisphereLight::new(Vec3::new(T::ZERO, T::ONE, T::ZERO)).unwrap());
+    let (mut kd, mut ks, m) = (s.c::<T>(), s.c::<T>(), s.m::<T>());
+    let mut exposure = s.s::<T>();
+    if NEGATIVE_COLOURS_OVERFLOW {
+        // Until `Real::to_fixed_i32` saturates (see the constant): colours and exposure >= 0.
+        kd = Rgb::new(kd.r.abs(), kd.g.abs(), kd.b.abs());
+        ks = Rgb::new(ks.r.abs(), ks.g.abs(), ks.b.abs());
+        exposure = exposure.abs();
+    }
+    let material = Material::new(kd, ks, m).or_else(|_| Material::matte(kd));
+    let mut opts = DrawOptions::new(if s.inp.below(2) == 0 {
+        Shading::Gouraud
+    } else {
+        Shading::PerPixel
+    });
+    opts.cull = cull;
+    opts.two_sided = s.inp.below(2) == 0;
+    opts.exposure = exposure;
+    opts.encoding = [Encoding::Linear, Encoding::Gamma2, Encoding::Srgb][s.inp.below(3) as usize];
+    let rows = 1 + s.inp.below(8) as u16;
+    let band_width = if s.inp.below(8) == 0 {
+        1 + s.inp.below(50) as u16
+    } else {
+        width.max(1)
+    };
+    let with_depth = s.inp.below(4) != 0;
+    let (Ok(camera), Ok(mesh), Ok(material)) = (camera, Mesh::new(&verts, &tris), material) else {
+        return;
+    };
+    if band_width as u32 * rows as u32 > 1 << 16 {
+        return;
+    }
+    let n = band_width as usize * rows as usize;
+    let (mut px, mut depth) = (vec![Rgb565(0); n], vec![0u16; n]);
+    let Ok(mut band) = Band::new(
+        &mut px,
+        if with_depth { Some(&mut depth) } else { None },
+        band_width,
+        0,
+    ) else {
+        return;
+    };
+    let shader = Lit::new(&light, &material);
+    let mut storage = vec![PreparedVertex::<T>::EMPTY; nv];
+    let mut prepared = PreparedMesh::new(mesh, &mut storage).ok();
+    if let Some(p) = prepared.as_mut() {
+        p.transform(&camera, &transform);
+        let _ = p.shade(&camera, &shader, &opts);
+        let _ = p.rows();
+    }
+    let tab = table::<T>(opts.encoding);
+    let mut y0 = 0u16;
+    while y0 < camera.height() {
+        band.move_to(y0);
+        band.clear(Rgb565(0));
+        let _ = draw(&camera, &mut band, &mesh, &transform, &shader, &opts);
+        if let Some(p) = &prepared {
+            let _ = p.draw(&camera, &mut band, &shader, &opts, &tab);
+        }
+        y0 = y0.saturating_add(rows);
+    }
+    // The triangle setup within the rasterizer's range, at any rows.
+    let fp = |inp: &mut Input<'_>| {
+        let c = |x: u32| (x % (2 * MAX_COORD as u32 + 1)) as i32 - MAX_COORD;
+        FixedPoint::new(c(inp.u32()), c(inp.u32()))
+    };
+    if let Some(t) = EdgeTriangle::new([fp(s.inp), fp(s.inp), fp(s.inp)], cull) {
+        let w = 1 + s.inp.below(64) as i32;
+        let r0 = s.inp.u32() as i32 % (MAX_COORD / 16);
+        let r1 = r0 + 1 + s.inp.below(16) as i32;
+        t.for_each_covered(w, r0, r1, |_, _, _| {});
+        t.for_each_span(w, r0, r1, |_, _, _| {});
     }
 }

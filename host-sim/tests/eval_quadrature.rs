@@ -1,0 +1,644 @@
+//! The eval protocol's id-to-function mapping, checked against the independent references of
+//! `tests/` through `host-sim eval` itself: for every model id of `models.md`, a few generic
+//! cases (non-unit directions, every parameter away from its special values) are written as
+//! JSON lines, answered by the binary, and compared with the quadrature of the defining integral
+//! (`tests/common/quadrature.rs`, `line_quadrature.rs`, `moments_quadrature.rs`) or, for the
+//! shaping functions, a transcription of their definition written here. A model id wired to
+//! the wrong function, a parameter read under the wrong name or in the wrong order, a missing
+//! normalization: each moves the value far beyond the tolerances.
+//!
+//! Tolerances: f64 the model's row of the f64 budget (`F64_BUDGET` in tests/common); f32
+//! 1e-5, f32-fast and fixed 1/1024 plus 1e-5 (inputs rounded to the backend inside eval, the
+//! reference at the exact inputs); all relative to `max(1, |value|)` (the moments and the line
+//! light are not normalized). The Hermite approximations: exact outside the fillet, within the
+//! measured error of Snyder's approximation inside it (and visibly not the exact model there).
+//! The fixed backend answers its models (`SUPPORTED_MODELS`) and `unsupported` for the others.
+
+// `!(a <= b)` is deliberate: true for a NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+// (Each included module allows its own dead code.)
+#[path = "../../tests/common/mod.rs"]
+mod common;
+#[path = "../../tests/common/line_quadrature.rs"]
+mod lq;
+#[path = "../../tests/common/moments_quadrature.rs"]
+mod mq;
+
+use std::collections::BTreeMap;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::io::Write;
+use std::process::{Command, Stdio};
+
+use common::quadrature as qd;
+use common::{add, cross, normalize, scale, sub, tol_f64, Quad, Rng, V3};
+use serde_json::{json, Value};
+
+/// Every model id of `models.md` (and of the eval protocol).
+const IDS: [&str; 27] = [
+    "hemi_const",
+    "hemi_cos",
+    "sky_overcast",
+    "sky_ground",
+    "cap_lambert",
+    "cap_lambert_hermite",
+    "sphere_lambert",
+    "sphere_lambert_hermite",
+    "polygon_lambert",
+    "line_lambert",
+    "phong_hemi_const",
+    "phong_hemi_cos",
+    "phong_cap",
+    "phong_sphere",
+    "phong_polygon",
+    "line_phong_peak",
+    "rect_phong_peak",
+    "axial_moment",
+    "double_axis_moment",
+    "directional_luminaire",
+    "glossy_reflection",
+    "glossy_transmission",
+    "lune_normalization",
+    "sh9_irradiance",
+    "sh9_disc_irradiance",
+    "superellipse_shape",
+    "distance_falloff",
+];
+
+/// Cases per model id.
+const PER_ID: usize = 4;
+
+/// Runs `host-sim eval --backend <backend>` on the lines; one JSON answer per line.
+fn eval(backend: &str, lines: &[Value]) -> Vec<Value> {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .args(["eval", "--backend", backend])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn host-sim eval");
+    let input: String = lines.iter().map(|l| format!("{l}\n")).collect();
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()).unwrap());
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    assert!(
+        out.status.success(),
+        "host-sim eval exited with {}",
+        out.status
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let answers: Vec<Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("an answer is JSON"))
+        .collect();
+    assert_eq!(answers.len(), lines.len(), "one answer per line");
+    answers
+}
+
+/// One case: the eval input line, the reference (one value, or three for the RGB models) and
+/// the f64 budget row it is held to.
+struct Case {
+    line: Value,
+    want: Vec<f64>,
+    row: &'static str,
+    /// Hermite cases: the largest error of the approximation allowed against the exact model
+    /// (0 outside the fillet), and the least (inside the fillet at a large cap: it must not be
+    /// the exact model).
+    hermite: Option<(f64, f64)>,
+}
+
+fn j(v: V3) -> Value {
+    json!(v)
+}
+
+/// A random direction at an angle in `[lo, hi]` from the unit `axis`, randomly scaled.
+fn tilt(rng: &mut Rng, axis: V3, lo: f64, hi: f64) -> V3 {
+    let w = rng.range(lo, hi);
+    let d = rng.dir_at(axis, w);
+    rng.stretch(d)
+}
+
+/// A random vector in the box `[-s, s]^3`.
+fn rbox(rng: &mut Rng, s: f64) -> V3 {
+    [rng.range(-s, s), rng.range(-s, s), rng.range(-s, s)]
+}
+
+/// A planar polygon: an L-shape (i odd) or a convex pentagon, of size about 1, centred at
+/// `center`, in a random plane.
+fn polygon(rng: &mut Rng, i: usize, center: V3) -> Vec<V3> {
+    let pts: Vec<[f64; 2]> = if i % 2 == 1 {
+        common::l_shape()
+    } else {
+        (0..5)
+            .map(|k| {
+                let a = std::f64::consts::TAU * (k as f64 + rng.range(0.0, 0.4)) / 5.0;
+                [0.6 * a.cos(), 0.6 * a.sin()]
+            })
+            .collect()
+    };
+    let size = rng.range(0.8, 1.4);
+    common::place(rng, &pts, center, size)
+}
+
+/// GLSL smoothstep.
+fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// `[superellipse_shape]` transcribed from `models.md`.
+fn superellipse(pos: V3, a: f64, b: f64, aa: f64, bb: f64, d: f64) -> f64 {
+    let [x, y, z] = pos;
+    if z <= 0.0 {
+        return 0.0;
+    }
+    let (xx, yy) = ((x / z).abs(), (y / z).abs());
+    if xx == 0.0 && yy == 0.0 {
+        return 1.0;
+    }
+    let q = a * b * ((b * xx).powf(2.0 / d) + (a * yy).powf(2.0 / d)).powf(-d / 2.0);
+    let r = aa * bb * ((bb * xx).powf(2.0 / d) + (aa * yy).powf(2.0 / d)).powf(-d / 2.0);
+    1.0 - smoothstep(q, r, 1.0)
+}
+
+/// `[distance_falloff]` transcribed from `models.md`.
+#[allow(clippy::too_many_arguments)]
+fn falloff(z: f64, m: f64, d0: f64, alpha: f64, zn: f64, zf: f64, ne: f64, fe: f64) -> f64 {
+    let g = if z > d0 {
+        (d0 / z).powf(alpha)
+    } else {
+        let s = (1.0 / m).ln();
+        let beta = -alpha / s;
+        m * (s * (z / d0).powf(beta)).exp()
+    };
+    smoothstep(zn - ne, zn, z) * (1.0 - smoothstep(zf, zf + fe, z)) * g
+}
+
+/// The cases of one model id.
+fn cases_of(id: &'static str, rng: &mut Rng, q: &Quad) -> Vec<Case> {
+    let mut out = Vec::new();
+    let ms = [0u32, 1, 7, 16];
+    for i in 0..PER_ID {
+        let tag = format!("{id}#{i}");
+        // A source axis and a normal (or r) at up to 2 rad from it: the source in view.
+        let axis = rng.sdir();
+        let n = tilt(rng, normalize(axis), 0.0, 2.0);
+        let m = ms[i % ms.len()];
+        let one = |line: Value, want: f64, row: &'static str| Case {
+            line,
+            want: vec![want],
+            row,
+            hermite: None,
+        };
+        let case = match id {
+            "hemi_const" => one(
+                json!({"id": tag, "model": id, "n": j(n), "axis": j(axis)}),
+                qd::hemi_const(normalize(axis), normalize(n), q),
+                id,
+            ),
+            "hemi_cos" => one(
+                json!({"id": tag, "model": id, "n": j(n), "axis": j(axis)}),
+                qd::hemi_cos(normalize(axis), normalize(n), q),
+                id,
+            ),
+            "sky_overcast" => {
+                let c = rng.range(0.5, 3.0);
+                one(
+                    json!({"id": tag, "model": id, "n": j(n), "zenith": j(axis), "c": c}),
+                    qd::sky_overcast(normalize(axis), c, normalize(n), q),
+                    id,
+                )
+            }
+            "sky_ground" => {
+                let sky = [rng.unit(), rng.unit(), rng.unit()];
+                let ground = [rng.unit(), rng.unit(), rng.unit()];
+                Case {
+                    line: json!({"id": tag, "model": id, "n": j(n), "up": j(axis),
+                                 "sky": j(sky), "ground": j(ground)}),
+                    want: qd::sky_ground(normalize(axis), sky, ground, normalize(n), q).to_vec(),
+                    row: id,
+                    hermite: None,
+                }
+            }
+            "cap_lambert" => {
+                let sigma = rng.range(0.1, 1.4);
+                let n = tilt(rng, normalize(axis), 0.0, FRAC_PI_2 + sigma - 0.05);
+                one(
+                    json!({"id": tag, "model": id, "n": j(n), "axis": j(axis), "sigma": sigma}),
+                    qd::cap_lambert(normalize(axis), sigma, normalize(n), q),
+                    id,
+                )
+            }
+            "cap_lambert_hermite" => {
+                // Cases 0, 1: outside the fillet (exact there); 2: inside, sigma = pi/8 (Snyder's
+                // approximation within 2.2e-4 of the exact model); 3: inside, sigma = pi/4, in
+                // the middle of the first segment (within 1.8e-3, and at least 1e-5 off).
+                let (sigma, w, hermite) = match i {
+                    0 => (0.5, rng.range(0.0, FRAC_PI_2 - 0.6), (0.0, 0.0)),
+                    1 => (0.3, rng.range(FRAC_PI_2 + 0.35, PI), (0.0, 0.0)),
+                    2 => (PI / 8.0, FRAC_PI_2 + 0.1, (2.5e-4, 0.0)),
+                    _ => (PI / 4.0, FRAC_PI_2 - PI / 8.0, (2e-3, 1e-5)),
+                };
+                let a = normalize(axis);
+                let nn = tilt(rng, a, w, w);
+                Case {
+                    line: json!({"id": tag, "model": id, "n": j(nn), "axis": j(axis),
+                                 "sigma": sigma}),
+                    want: vec![qd::cap_lambert(a, sigma, normalize(nn), q)],
+                    row: "cap_lambert",
+                    hermite: Some(hermite),
+                }
+            }
+            "sphere_lambert" | "sphere_lambert_hermite" | "phong_sphere" => {
+                // Inside the fixed backend's coordinate range [-4, 4].
+                let center = rbox(rng, 1.0);
+                let radius = rng.range(0.3, 0.8);
+                let p = add(center, scale(rng.dir(), radius * rng.range(1.5, 3.0)));
+                let (ax, sigma) = qd::sphere_cap(center, radius, p);
+                let n = tilt(rng, ax, 0.0, if id == "phong_sphere" { 0.5 } else { 1.5 });
+                if id == "phong_sphere" {
+                    one(
+                        json!({"id": tag, "model": id, "p": j(p), "r": j(n), "center": j(center),
+                               "radius": radius, "m": m}),
+                        qd::phong_sphere(center, radius, p, normalize(n), m, q),
+                        id,
+                    )
+                } else if id == "sphere_lambert" {
+                    one(
+                        json!({"id": tag, "model": id, "p": j(p), "n": j(n), "center": j(center),
+                               "radius": radius}),
+                        qd::sphere_lambert(center, radius, p, normalize(n), q),
+                        id,
+                    )
+                } else {
+                    // n outside the fillet (cases 0, 1: exact) or in it (within the measured
+                    // error of the approximation at this sigma, below pi/4).
+                    let w = if i < 2 {
+                        rng.range(0.0, (FRAC_PI_2 - sigma - 0.05).max(0.0))
+                    } else {
+                        FRAC_PI_2 - 0.5 * sigma
+                    };
+                    let nn = tilt(rng, ax, w, w);
+                    let tol = if i < 2 { 0.0 } else { 2e-3 };
+                    Case {
+                        line: json!({"id": tag, "model": id, "p": j(p), "n": j(nn),
+                                     "center": j(center), "radius": radius}),
+                        want: vec![qd::cap_lambert(ax, sigma, normalize(nn), q)],
+                        row: "sphere_lambert",
+                        hermite: Some((tol, 0.0)),
+                    }
+                }
+            }
+            "polygon_lambert" | "phong_polygon" => {
+                let center = scale(rng.dir(), rng.range(1.8, 2.5));
+                let verts = polygon(rng, i, center);
+                let p = rbox(rng, 0.3);
+                // The weight axis toward the light, tilted (so the horizon clips some cases).
+                let spread = if id == "phong_polygon" { 0.3 } else { 1.3 };
+                let k = tilt(rng, normalize(sub(center, p)), 0.0, spread);
+                let vj: Vec<Value> = verts.iter().map(|&x| j(x)).collect();
+                if id == "polygon_lambert" {
+                    one(
+                        json!({"id": tag, "model": id, "p": j(p), "n": j(k), "verts": vj}),
+                        qd::polygon_lambert(&verts, p, normalize(k), q),
+                        id,
+                    )
+                } else {
+                    one(
+                        json!({"id": tag, "model": id, "p": j(p), "r": j(k), "verts": vj, "m": m}),
+                        qd::phong_polygon(&verts, p, normalize(k), m, q),
+                        id,
+                    )
+                }
+            }
+            "line_lambert" => {
+                let (a, b, p) = (rbox(rng, 2.0), rbox(rng, 2.0), rbox(rng, 2.0));
+                let mid = scale(add(a, b), 0.5);
+                let n = tilt(rng, normalize(sub(mid, p)), 0.0, 1.2);
+                let k = i as u32;
+                let (want, _) = lq::line_lambert(a, b, p, normalize(n), k);
+                one(
+                    json!({"id": tag, "model": id, "p": j(p), "n": j(n), "a": j(a), "b": j(b),
+                           "k": k}),
+                    want,
+                    id,
+                )
+            }
+            "phong_hemi_const" => one(
+                json!({"id": tag, "model": id, "r": j(n), "axis": j(axis), "m": m}),
+                qd::phong_hemi_const(normalize(axis), normalize(n), m, q),
+                id,
+            ),
+            "phong_hemi_cos" => one(
+                json!({"id": tag, "model": id, "r": j(n), "axis": j(axis), "m": m}),
+                qd::phong_hemi_cos(normalize(axis), normalize(n), m, q),
+                id,
+            ),
+            "phong_cap" => {
+                let sigma = rng.range(0.1, 1.4);
+                // r near the cap half the time (the lobe then sees it at every m).
+                let r = if i % 2 == 0 {
+                    tilt(rng, normalize(axis), 0.0, sigma + 0.3)
+                } else {
+                    n
+                };
+                one(
+                    json!({"id": tag, "model": id, "r": j(r), "axis": j(axis), "sigma": sigma,
+                           "m": m}),
+                    qd::phong_cap(normalize(axis), sigma, normalize(r), m, q),
+                    id,
+                )
+            }
+            "line_phong_peak" => {
+                let (a, b, p) = (rbox(rng, 2.0), rbox(rng, 2.0), rbox(rng, 2.0));
+                let t = rng.unit();
+                let toward = normalize(sub(add(a, scale(sub(b, a), t)), p));
+                let r = tilt(rng, toward, 0.0, 0.4);
+                let want = lq::lobe(lq::line_max_cos(a, b, p, normalize(r)), m);
+                one(
+                    json!({"id": tag, "model": id, "p": j(p), "r": j(r), "a": j(a), "b": j(b),
+                           "m": m}),
+                    want,
+                    id,
+                )
+            }
+            "rect_phong_peak" => {
+                let o = rbox(rng, 1.5);
+                let eu = scale(rng.dir(), rng.range(0.5, 1.5));
+                let ev = scale(normalize(cross(eu, rng.dir())), rng.range(0.5, 1.5));
+                let nu = normalize(cross(eu, ev));
+                let x = add(o, add(scale(eu, rng.unit()), scale(ev, rng.unit())));
+                let p = add(
+                    x,
+                    scale(
+                        nu,
+                        rng.range(0.5, 2.0) * if i % 2 == 0 { 1.0 } else { -1.0 },
+                    ),
+                );
+                // r toward a point of the light or beyond its boundary.
+                let y = add(
+                    o,
+                    add(
+                        scale(eu, rng.range(-0.3, 1.3)),
+                        scale(ev, rng.range(-0.3, 1.3)),
+                    ),
+                );
+                let r = tilt(rng, normalize(sub(y, p)), 0.0, 0.2);
+                let want = lq::lobe(lq::rect_max_cos(o, eu, ev, p, normalize(r)), m);
+                one(
+                    json!({"id": tag, "model": id, "p": j(p), "r": j(r), "origin": j(o),
+                           "eu": j(eu), "ev": j(ev), "m": m}),
+                    want,
+                    id,
+                )
+            }
+            "axial_moment"
+            | "double_axis_moment"
+            | "directional_luminaire"
+            | "glossy_reflection"
+            | "glossy_transmission" => {
+                let center = scale(rng.dir(), rng.range(1.8, 2.5));
+                let verts = polygon(rng, i, center);
+                let p = rbox(rng, 0.3);
+                let vj: Vec<Value> = verts.iter().map(|&x| j(x)).collect();
+                let toward = normalize(sub(center, p));
+                let w = tilt(rng, toward, 0.0, 1.0);
+                let nn = tilt(rng, toward, 0.0, 1.0);
+                let (wn, nnn) = (normalize(w), normalize(nn));
+                match id {
+                    "axial_moment" => one(
+                        json!({"id": tag, "model": id, "p": j(p), "verts": vj, "w": j(w), "m": m}),
+                        mq::axial_moment(&verts, p, wn, m, q),
+                        id,
+                    ),
+                    "double_axis_moment" => one(
+                        json!({"id": tag, "model": id, "p": j(p), "verts": vj, "w": j(w),
+                               "v": j(nn), "m": m}),
+                        mq::double_axis_moment(&verts, p, wn, nnn, m, q),
+                        id,
+                    ),
+                    "directional_luminaire" => {
+                        // The luminaire's axis points from the light toward p.
+                        let ax = tilt(rng, scale(toward, -1.0), 0.0, 0.8);
+                        one(
+                            json!({"id": tag, "model": id, "p": j(p), "n": j(nn), "verts": vj,
+                                   "axis": j(ax), "m": m}),
+                            mq::directional_luminaire(&verts, p, nnn, normalize(ax), m, q),
+                            id,
+                        )
+                    }
+                    "glossy_reflection" => {
+                        // The eye on the mirror side of n: mr = 2 (n.e) n - e near the light.
+                        let e = tilt(rng, nnn, 0.0, 1.0);
+                        one(
+                            json!({"id": tag, "model": id, "p": j(p), "n": j(nn), "e": j(e),
+                                   "verts": vj, "m": m}),
+                            mq::glossy_reflection(&verts, p, nnn, normalize(e), m, q),
+                            id,
+                        )
+                    }
+                    _ => {
+                        // Transmission: the eye below the surface, the light above.
+                        let e = tilt(rng, scale(toward, -1.0), 0.0, 0.8);
+                        let nt = scale(nn, -1.0);
+                        one(
+                            json!({"id": tag, "model": id, "p": j(p), "n": j(nt), "e": j(e),
+                                   "verts": vj, "m": m}),
+                            mq::glossy_transmission(&verts, p, normalize(nt), normalize(e), m, q),
+                            id,
+                        )
+                    }
+                }
+            }
+            "lune_normalization" => one(
+                json!({"id": tag, "model": id, "w": j(n), "v": j(axis), "m": m}),
+                mq::lune_normalization(normalize(n), normalize(axis), m, q),
+                id,
+            ),
+            "sh9_irradiance" => {
+                let coeffs: Vec<V3> = (0..9)
+                    .map(|k| {
+                        let lo = if k == 0 { 0.0 } else { -0.5 };
+                        [rng.range(lo, 1.0), rng.range(lo, 1.0), rng.range(lo, 1.0)]
+                    })
+                    .collect();
+                let want = (0..3)
+                    .map(|ch| {
+                        let c: [f64; 9] = std::array::from_fn(|k| coeffs[k][ch]);
+                        qd::sh9_irradiance(&c, normalize(n), q)
+                    })
+                    .collect();
+                Case {
+                    line: json!({"id": tag, "model": id, "n": j(n), "coeffs": coeffs}),
+                    want,
+                    row: id,
+                    hermite: None,
+                }
+            }
+            "sh9_disc_irradiance" => {
+                let alpha = rng.range(0.1, 3.0);
+                one(
+                    json!({"id": tag, "model": id, "n": j(n), "axis": j(axis), "alpha": alpha}),
+                    qd::sh9_disc_irradiance(normalize(axis), alpha, normalize(n), q),
+                    id,
+                )
+            }
+            "superellipse_shape" => {
+                let (a, b) = (rng.range(0.2, 0.6), rng.range(0.2, 0.6));
+                let (aa, bb) = (a + rng.range(0.1, 0.5), b + rng.range(0.1, 0.5));
+                let d = rng.range(0.3, 2.0);
+                // Along a ray of light space at angle theta: inside the inner curve, twice in
+                // the soft band between the curves, outside the outer one (the curves' points
+                // at theta: (a cos^d, b sin^d) and (A cos^d, B sin^d)).
+                let th = rng.range(0.1, FRAC_PI_2 - 0.1);
+                let (c, sn) = (th.cos().powf(d), th.sin().powf(d));
+                let t = [-0.4, 0.3, 0.7, 1.4][i];
+                let (x, y) = (a * c + t * (aa - a) * c, b * sn + t * (bb - b) * sn);
+                let z = rng.range(0.5, 3.0);
+                let pos = [x * z, -y * z, z];
+                one(
+                    json!({"id": tag, "model": id, "pos": j(pos), "a": a, "b": b, "A": aa,
+                           "B": bb, "d": d}),
+                    superellipse(pos, a, b, aa, bb, d),
+                    id,
+                )
+            }
+            "distance_falloff" => {
+                let mm = rng.range(1.5, 4.0);
+                let d0 = rng.range(0.3, 1.5);
+                let alpha = rng.range(0.5, 3.0);
+                let zn = rng.range(0.3, 1.0);
+                let zf = zn + rng.range(1.0, 3.0);
+                let (ne, fe) = (rng.range(0.1, 0.3), rng.range(0.2, 1.0));
+                // In the near ramp, below d0, beyond d0, in the far ramp.
+                let z = [
+                    zn - 0.5 * ne,
+                    0.5 * d0.min(zn) + 0.5 * zn,
+                    zf - 0.1,
+                    zf + 0.5 * fe,
+                ][i]
+                    .max(0.05);
+                one(
+                    json!({"id": tag, "model": id, "z": z, "M": mm, "d0": d0, "alpha": alpha,
+                           "znear": zn, "zfar": zf, "near_edge": ne, "far_edge": fe}),
+                    falloff(z, mm, d0, alpha, zn, zf, ne, fe),
+                    id,
+                )
+            }
+            _ => panic!("no cases for {id}"),
+        };
+        out.push(case);
+    }
+    out
+}
+
+/// Every id's cases (deterministic).
+fn all_cases() -> Vec<Case> {
+    let q = Quad::STD;
+    let mut rng = Rng::new(0x0e7a_19ad);
+    IDS.iter()
+        .flat_map(|id| cases_of(id, &mut rng, &q))
+        .collect()
+}
+
+/// The answer's numbers: `value`, or the three of `rgb`; `None` for an error line.
+fn numbers(a: &Value) -> Option<Vec<f64>> {
+    if let Some(x) = a["value"].as_f64() {
+        return Some(vec![x]);
+    }
+    let rgb = a["rgb"].as_array()?;
+    rgb.iter().map(Value::as_f64).collect()
+}
+
+/// Checks one backend's answers: per id, the largest error (relative to `max(1, |want|)`)
+/// against the tolerance; prints a line per id.
+fn check_backend(backend: &str, cases: &[Case], tol_of: impl Fn(&Case) -> f64) {
+    let lines: Vec<Value> = cases.iter().map(|c| c.line.clone()).collect();
+    let answers = eval(backend, &lines);
+    let fixed = backend == "fixed";
+    let supported = arealight::real::fixed22::SUPPORTED_MODELS;
+    let mut worst: BTreeMap<String, (f64, f64)> = BTreeMap::new();
+    let mut failures = Vec::new();
+    for (c, a) in cases.iter().zip(&answers) {
+        let id = c.line["model"].as_str().unwrap();
+        assert_eq!(a["id"], c.line["id"], "answers in input order");
+        if fixed && !supported.contains(&id) {
+            let e = a["error"].as_str().unwrap_or("");
+            assert!(
+                e.starts_with("unsupported"),
+                "fixed {id}: expected unsupported, got {a}"
+            );
+            continue;
+        }
+        let Some(got) = numbers(a) else {
+            failures.push(format!("{backend} {id}: no value: {a} for {}", c.line));
+            continue;
+        };
+        assert_eq!(got.len(), c.want.len(), "{backend} {id}: {a}");
+        let tol = tol_of(c);
+        for (g, w) in got.iter().zip(&c.want) {
+            let err = (g - w).abs() / w.abs().max(1.0);
+            let slot = worst.entry(id.to_owned()).or_insert((0.0, tol));
+            if !(err <= slot.0) {
+                slot.0 = err;
+            }
+            slot.1 = slot.1.max(tol);
+            if !(err <= tol) {
+                failures.push(format!(
+                    "{backend} {id}: got {g:e}, reference {w:e} (error {err:.2e} > {tol:.1e}) for {}",
+                    c.line
+                ));
+            }
+            // Hermite inside the fillet at a large cap: an approximation, not the exact model.
+            if let Some((_, least)) = c.hermite {
+                if !((g - w).abs() >= least) {
+                    failures.push(format!(
+                        "{backend} {id}: {g:e} is within {least:e} of the exact model {w:e} \
+                         where Snyder's approximation is not: {}",
+                        c.line
+                    ));
+                }
+            }
+        }
+    }
+    for (id, (e, tol)) in &worst {
+        println!("[eval] {backend:<8} {id:<24} max error {e:.2e} (largest tolerance {tol:.1e})");
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn every_model_id_answers_its_defining_integral() {
+    let cases = all_cases();
+    assert_eq!(cases.len(), IDS.len() * PER_ID);
+    // Every id is checked where its value is not trivial: at least three of its cases have a
+    // reference above 1e-3, and not all of them are equal.
+    for id in IDS {
+        let refs: Vec<f64> = cases
+            .iter()
+            .filter(|c| c.line["model"] == id)
+            .map(|c| c.want[0])
+            .collect();
+        let big = refs.iter().filter(|w| w.abs() > 1e-3).count();
+        assert!(big >= 3, "{id}: references {refs:?}");
+        assert!(
+            refs.iter().any(|w| (w - refs[0]).abs() > 1e-3),
+            "{id}: {refs:?}"
+        );
+    }
+    // f64: the model's f64 budget (the Hermite cases: the approximation's own error).
+    check_backend("f64", &cases, |c| match c.hermite {
+        Some((h, _)) => tol_f64(c.row) + h,
+        None => tol_f64(c.row),
+    });
+    // The low-precision backends: inputs rounded inside eval, so the tolerances include the
+    // models' sensitivity to that rounding in these generic cases.
+    for (backend, tol) in [
+        ("f32", 1e-5),
+        ("f32-fast", 1.0 / 1024.0 + 1e-5),
+        ("fixed", 1.0 / 1024.0 + 1e-5),
+    ] {
+        check_backend(backend, &cases, |c| tol + c.hermite.map_or(0.0, |h| h.0));
+    }
+}
