@@ -79,7 +79,7 @@ pub mod sh9;
 pub mod shaping;
 pub mod sine_power;
 pub mod vec3;
-#[cfg(feature = "raster")]
+#[cfg(any(feature = "raster", feature = "fixed"))]
 mod wide;
 
 #[cfg(feature = "cap")]

@@ -337,12 +337,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             camera.height as i32 * SUBPIXEL,
         );
         for tri in self.mesh.triangles() {
-            let idx = tri.map(|i| i as usize);
-            let (Some(a), Some(b), Some(c)) = (
-                self.verts.get(idx[0]),
-                self.verts.get(idx[1]),
-                self.verts.get(idx[2]),
-            ) else {
+            let Some([a, b, c]) = corners(self.verts, tri) else {
                 continue;
             };
             if a.outside & b.outside & c.outside != 0 {
@@ -358,7 +353,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                     continue;
                 }
             }
-            for i in idx {
+            for i in tri.map(usize::from) {
                 if let Some(v) = self.verts.get_mut(i) {
                     v.flags |= NEEDED;
                 }
@@ -449,12 +444,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             row1,
         };
         for tri in self.mesh.triangles() {
-            let idx = tri.map(|i| i as usize);
-            let (Some(a), Some(b), Some(c)) = (
-                self.verts.get(idx[0]),
-                self.verts.get(idx[1]),
-                self.verts.get(idx[2]),
-            ) else {
+            let Some([a, b, c]) = corners(self.verts, tri) else {
                 continue;
             };
             if a.outside & b.outside & c.outside != 0 {
@@ -526,6 +516,19 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             raster(ctx, band, &[&sv[0], &sv[i], &sv[i + 1]].map(|s| *s), stats);
         }
     }
+}
+
+/// The three vertices of triangle `tri`, or `None` if an index is out of range.
+#[inline(always)]
+fn corners<'v, T>(
+    verts: &'v [PreparedVertex<T>],
+    tri: &[u16; 3],
+) -> Option<[&'v PreparedVertex<T>; 3]> {
+    Some([
+        verts.get(usize::from(tri[0]))?,
+        verts.get(usize::from(tri[1]))?,
+        verts.get(usize::from(tri[2]))?,
+    ])
 }
 
 /// The culling test of [`EdgeTriangle::new`] alone (two products): `false` for a triangle of

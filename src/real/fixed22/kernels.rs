@@ -196,19 +196,12 @@ pub(super) fn div_bits(a: i32, b: i32) -> i32 {
     }
 }
 
-/// `a * b` exactly, from four 16 x 16-bit products. ARMv6-M (Cortex-M0) has only a
-/// 32 x 32 -> 32-bit multiply, and the compiler's `i64` product is a call to the 64 x 64-bit
-/// `__aeabi_lmul`; this is the 32 x 32 -> 64 product the fixed-point path needs, inline.
-/// (Measured in the QEMU harness: see the module docs.)
+/// `a * b` exactly: the crate's one 32 x 32 -> 64-bit product (`crate::wide`: four 16 x 16-bit
+/// products inline on ARMv6-M, whose `i64` product is the library call `__aeabi_lmul`; the
+/// widening multiply elsewhere). Measured in the QEMU harness: see the module docs.
 #[inline(always)]
 pub(super) fn wide_mul(a: i32, b: i32) -> i64 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    // |ah|, |bh| <= 2^15 and al, bl < 2^16: the cross products fit an i32, the low one a u32.
-    let hh = i64::from(ah * bh);
-    let mid = i64::from(ah * bl) + i64::from(al * bh);
-    let ll = i64::from((al as u32) * (bl as u32));
-    (hh << 32) + (mid << 16) + ll
+    crate::wide::mul_32(a, b)
 }
 
 /// `x * y` of two Q30 values with `|x|, |y| < 2` (so each fits an `i32`), rounded down.
