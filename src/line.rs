@@ -504,7 +504,7 @@ impl<T: Real> LineLight<T> {
     /// (any length) and decay `k`, the part of the segment below the tangent plane clipped
     /// away; not normalized (see the module docs).
     ///
-    /// Accuracy (relative to `max(1, |I|)`; module docs): f64 within 2e-15 of the quadrature
+    /// Accuracy (relative to `max(1, |I|)`; module docs): f64 within 1.0e-13 of the quadrature
     /// of the definition where f64 resolves the geometry; f32 within 3.4e-7 of f64 and Fast32
     /// within 2e-5 where the value is well conditioned. Cost: 3 cross products, ~10 dot
     /// products, 1 normalization, 4-6 divisions, 3-5 sqrt, then k = 0: 1 `ln` (2 across the

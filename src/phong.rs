@@ -48,8 +48,8 @@
 //!
 //! ## Accuracy
 //!
-//! f64 agrees with the quadrature of the definition to 1e-10 or better for every `m` tested
-//! (0 to 255). In f32 the recurrences raise numbers within an ULP of 1 to powers up to `m`, so
+//! f64 agrees with the quadrature of the definition to 5.5e-13 for every `m` tested from 0 to
+//! 255, and 1.8e-12 up to `m` = 1001 (measured; tested per model in `F64_BUDGET`). In f32 the recurrences raise numbers within an ULP of 1 to powers up to `m`, so
 //! the error grows about as `m 2^-24`: within 2e-6 of f64 up to `m` of about 64, 4.5e-6 (cap) and
 //! 1.3e-6 (polygon) at `m = 255`. The inputs are made consistent first (`cos w`, `sin w` with
 //! `c^2 + s^2 = 1`; `f = 1 - (r.G)^2`), which cut the m = 255 error three-fold. The README

@@ -245,7 +245,7 @@ impl<T: Real> Superellipse<T> {
     /// light space (beam along +z; see [`LightFrame::to_light`]). 1 on the axis (`x = y = 0`)
     /// and inside the inner curve, 0 outside the outer curve and where `z <= 0`.
     ///
-    /// Accuracy (tests/shaping.rs, d from 0.1 to 4): f64 within 1e-12 of a direct evaluation
+    /// Accuracy (tests/shaping.rs, d from 0.1 to 4): f64 within 3e-13 of a direct evaluation
     /// of the spec's formula (5e-14 measured, in a 1%-wide transition band); f32 and
     /// [`crate::Fast32`] (identical here) within 2e-6 of f64 where the model is
     /// well-conditioned (6.2e-7 measured), and within a few times the model's own sensitivity
@@ -412,7 +412,7 @@ impl<T: Real> DistanceFalloff<T> {
     /// times the cut-on and cut-off smoothsteps.
     ///
     /// Accuracy (tests/shaping.rs, relative to `max(1, value)`, M up to 100, alpha up to 4):
-    /// f64 within 1e-12 of a direct evaluation of the spec's formula (1.7e-15 measured); f32
+    /// f64 within 8e-14 of a direct evaluation of the spec's formula (1.4e-14 measured); f32
     /// and [`crate::Fast32`] (identical here) within 2e-6 of f64 (4.8e-7 measured). The
     /// relative error grows with `|alpha ln(z/d0)|` and `ln M` (the exponents' rounding).
     ///
