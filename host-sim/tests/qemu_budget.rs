@@ -19,6 +19,10 @@
 //! Without `qemu-system-arm` it prints SKIPPED and passes, unless the environment variable
 //! `CI` is set, where it fails. Run it alone with `cargo test -p host-sim --test qemu_budget`.
 
+#[path = "support/process.rs"]
+mod process;
+use process::{root, run};
+
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/cases.rs"]
 mod cases;
@@ -33,7 +37,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use arealight::{Fast32, Fixed22, Real};
 use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
@@ -179,57 +183,6 @@ fn reference(round: fn(f64) -> f64) -> Result<Vec<Vec<Sample>>, String> {
         .collect())
 }
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_default()
-}
-
-fn run(cmd: &mut Command, timeout: Duration) -> Result<String, String> {
-    let shown = format!("{cmd:?}");
-    let mut child = cmd
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("{shown}: {e}"))?;
-    // Drain both pipes while waiting, so a chatty child never blocks on a full pipe.
-    let drain = |pipe: Option<Box<dyn std::io::Read + Send>>| {
-        std::thread::spawn(move || {
-            let mut buf = Vec::new();
-            if let Some(mut p) = pipe {
-                let _ = p.read_to_end(&mut buf);
-            }
-            String::from_utf8_lossy(&buf).into_owned()
-        })
-    };
-    let out = drain(child.stdout.take().map(|p| Box::new(p) as _));
-    let err = drain(child.stderr.take().map(|p| Box::new(p) as _));
-    let start = Instant::now();
-    let status = loop {
-        match child.try_wait() {
-            Ok(Some(status)) => break status,
-            Ok(None) if start.elapsed() > timeout => {
-                let _ = child.kill();
-                let _ = child.wait();
-                return Err(format!("{shown}: timed out after {timeout:?}"));
-            }
-            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
-            Err(e) => return Err(format!("{shown}: {e}")),
-        }
-    };
-    let text = out.join().unwrap_or_default();
-    let errors = err.join().unwrap_or_default();
-    if !status.success() {
-        let tail: Vec<&str> = text.lines().rev().take(5).collect();
-        return Err(format!(
-            "{shown}: {status}\n--- stdout (last lines)\n{}\n--- stderr\n{errors}",
-            tail.into_iter().rev().collect::<Vec<_>>().join("\n"),
-        ));
-    }
-    Ok(text)
-}
-
 fn build(target: &str, profile: &str, target_dir: &Path) -> Result<PathBuf, String> {
     let dir = root().join("boards/qemu-budget");
     let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
@@ -241,7 +194,7 @@ fn build(target: &str, profile: &str, target_dir: &Path) -> Result<PathBuf, Stri
         .env_remove("CARGO_ENCODED_RUSTFLAGS")
         .env_remove("CARGO_BUILD_TARGET")
         .env_remove("CARGO_TARGET_DIR");
-    run(&mut cmd, Duration::from_secs(900)).map_err(|e| {
+    run(&mut cmd, Duration::from_secs(900), |_| true).map_err(|e| {
         format!("building the firmware for {target} (is the rustup target installed?): {e}")
     })?;
     Ok(target_dir.join(target).join(profile).join("qemu-budget"))
@@ -263,7 +216,7 @@ fn qemu(machine: &str, elf: &Path) -> Result<String, String> {
     .arg("-kernel")
     .arg(elf)
     .stdin(Stdio::null());
-    run(&mut cmd, Duration::from_secs(120))
+    run(&mut cmd, Duration::from_secs(120), |_| true)
 }
 
 /// One parsed `V` line, or `A` line (then `k` is its sample count).

@@ -22,6 +22,9 @@
 #[allow(dead_code, unused_attributes)]
 #[path = "../../boards/demo-scene/src/lib.rs"]
 mod demo_scene;
+#[path = "support/process.rs"]
+mod process;
+use process::{root, run};
 #[allow(dead_code)]
 #[path = "../../boards/qemu-frame/src/scene.rs"]
 mod scene;
@@ -63,63 +66,6 @@ struct Output {
     stack: Option<(u32, u32)>,
 }
 
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_default()
-}
-
-/// Runs `cmd` to completion within `timeout`; its stdout, or why it failed.
-fn run(cmd: &mut Command, timeout: Duration) -> Result<String, String> {
-    let shown = format!("{cmd:?}");
-    let mut child = cmd
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("{shown}: {e}"))?;
-    // Drain both pipes while waiting, so a chatty child never blocks on a full pipe.
-    let drain = |pipe: Option<Box<dyn std::io::Read + Send>>| {
-        std::thread::spawn(move || {
-            let mut buf = Vec::new();
-            if let Some(mut p) = pipe {
-                let _ = p.read_to_end(&mut buf);
-            }
-            String::from_utf8_lossy(&buf).into_owned()
-        })
-    };
-    let out = drain(child.stdout.take().map(|p| Box::new(p) as _));
-    let err = drain(child.stderr.take().map(|p| Box::new(p) as _));
-    let start = Instant::now();
-    let status = loop {
-        match child.try_wait() {
-            Ok(Some(status)) => break status,
-            Ok(None) if start.elapsed() > timeout => {
-                let _ = child.kill();
-                let _ = child.wait();
-                return Err(format!("{shown}: timed out after {timeout:?}"));
-            }
-            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
-            Err(e) => return Err(format!("{shown}: {e}")),
-        }
-    };
-    let text = out.join().unwrap_or_default();
-    let errors = err.join().unwrap_or_default();
-    if !status.success() {
-        let tail: Vec<&str> = text
-            .lines()
-            .filter(|l| !l.starts_with("B "))
-            .rev()
-            .take(5)
-            .collect();
-        return Err(format!(
-            "{shown}: {status}\n--- stdout (last lines but pixels)\n{}\n--- stderr\n{errors}",
-            tail.into_iter().rev().collect::<Vec<_>>().join("\n"),
-        ));
-    }
-    Ok(text)
-}
-
 /// Builds the firmware (release) into `target_dir`; the ELF's path.
 fn build(target_dir: &Path) -> Result<PathBuf, String> {
     let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
@@ -131,7 +77,7 @@ fn build(target_dir: &Path) -> Result<PathBuf, String> {
         .env_remove("CARGO_ENCODED_RUSTFLAGS")
         .env_remove("CARGO_BUILD_TARGET")
         .env_remove("CARGO_TARGET_DIR");
-    run(&mut cmd, Duration::from_secs(900)).map_err(|e| {
+    run(&mut cmd, Duration::from_secs(900), |l| !l.starts_with("B ")).map_err(|e| {
         format!("building boards/qemu-frame (is the rustup target {TRIPLE} installed?): {e}")
     })?;
     Ok(target_dir.join(TRIPLE).join("release").join(BIN))
@@ -146,7 +92,7 @@ fn qemu(elf: &Path) -> Result<String, String> {
         .arg("-kernel")
         .arg(elf)
         .stdin(Stdio::null());
-    run(&mut cmd, Duration::from_secs(600))
+    run(&mut cmd, Duration::from_secs(600), |l| !l.starts_with("B "))
 }
 
 fn qemu_version() -> String {
