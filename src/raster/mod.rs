@@ -89,8 +89,8 @@ pub use mesh::MeshCounts;
 pub use prepared::{PreparedMesh, PreparedVertex, VertexColour};
 pub use shade::{reflect, Lit, Material, Shader, Shading};
 pub use target::{
-    encode_pixel, Band, EncodeTable, Encoding, PixelFormat, Rgb565, Rgb888, DEPTH_FAR,
-    ENCODE_ENTRIES, ENCODE_INDEX_BITS,
+    encode_pixel, Band, EncodeTable, Encoding, PixelFormat, Rgb565, Rgb888, ToneMap, DEPTH_FAR,
+    ENCODE_ENTRIES, ENCODE_INDEX_BITS, TONE_WHITE_MAX_PERCENT,
 };
 
 use edge::SUBPIXEL;

@@ -5,6 +5,10 @@ use super::RasterError;
 use crate::{Real, Rgb};
 
 /// How a linear colour (after the exposure) is encoded into a pixel's channels.
+///
+/// The first three clamp the linear value to [0, 1] first (a highlight above the display's
+/// white clips to white); [`Encoding::SrgbTone`] compresses highlights with a tone curve
+/// instead.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum Encoding {
@@ -14,18 +18,116 @@ pub enum Encoding {
     Gamma2,
     /// The sRGB transfer function (1 `powf` per channel: an `exp` and a `ln`).
     Srgb,
+    /// The tone curve ([`ToneMap::apply`]) in linear light, then the sRGB transfer function:
+    /// values up to the curve's knee are shown as [`Encoding::Srgb`] shows them, brighter ones
+    /// are compressed to reach white at the curve's white point instead of clipping at 1.
+    /// Cost: `Srgb`'s plus, above the knee, 3 divisions and 3 multiplies per channel through
+    /// [`Encoding::encode`]; nothing extra per pixel through an [`EncodeTable`] (the curve is
+    /// folded into the table: see [`EncodeTable::exposure_scale`]).
+    SrgbTone(ToneMap),
+}
+
+/// A highlight-compressing tone curve: the identity up to the knee `k`, then a Reinhard
+/// shoulder that reaches display white at the white point `W` (`k < 1 < W`):
+///
+/// `f(x) = x` for `x <= k`; `f(x) = k + s h((x - k) / s)` for `k < x < W`, with `s = 1 - k`
+/// and the extended Reinhard curve `h(u) = u (1 + u / U^2) / (1 + u)`, `U = (W - k) / s`;
+/// `f(x) = 1` for `x >= W`. `f` is continuous with a continuous slope at the knee (1 on both
+/// sides), increasing, and `f(W) = 1`; with `k = 0` it is Reinhard's extended operator
+/// `x (1 + x / W^2) / (1 + x)`. Negative values and NaN map to 0.
+///
+/// The parameters are whole percent of the display's white (so that the type is `Eq` and
+/// `Hash` like [`Encoding`]): `ToneMap::new(60, 400)` keeps everything below 60 % as it was
+/// and compresses 60 % .. 400 % into 60 % .. 100 %.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ToneMap {
+    knee: u8,
+    white: u16,
+}
+
+/// The largest white point of a [`ToneMap`], in percent: 128 times the display's white (the
+/// largest linear colour the fixed-point rasterizer carries).
+pub const TONE_WHITE_MAX_PERCENT: u16 = 12_800;
+
+impl ToneMap {
+    /// The curve with its knee at `knee_percent` % and its white point at `white_percent` %
+    /// of the display's white.
+    ///
+    /// # Errors
+    /// [`RasterError::BadParameter`] (`"knee_percent"`) for a knee of 100 % or more;
+    /// (`"white_percent"`) for a white point of 100 % or less or above
+    /// [`TONE_WHITE_MAX_PERCENT`].
+    pub const fn new(knee_percent: u8, white_percent: u16) -> Result<Self, RasterError> {
+        if knee_percent >= 100 {
+            return Err(RasterError::BadParameter("knee_percent"));
+        }
+        if white_percent <= 100 || white_percent > TONE_WHITE_MAX_PERCENT {
+            return Err(RasterError::BadParameter("white_percent"));
+        }
+        Ok(ToneMap {
+            knee: knee_percent,
+            white: white_percent,
+        })
+    }
+    /// The knee, in percent of the display's white.
+    pub const fn knee_percent(self) -> u8 {
+        self.knee
+    }
+    /// The white point, in percent of the display's white.
+    pub const fn white_percent(self) -> u16 {
+        self.white
+    }
+    /// The white point as a linear value (`white_percent / 100`).
+    #[inline]
+    pub fn white<T: Real>(self) -> T {
+        // Whole and hundredths apart: Fixed22 holds at most 512, not 12800.
+        let w = self.white as u32;
+        T::from_u32(w / 100) + T::from_u32(w % 100).div_u32(100)
+    }
+    /// `f(x)` (see the type), in `T`'s own arithmetic: in [0, 1] for every input. Accuracy
+    /// against the definition in f64 (measured over [-1, 2 W] for six curves in
+    /// `tests/raster_tone.rs`): 2.2e-16 in f64, 1.7e-7 in f32 and `Fast32`, 4.6e-7 in `Fixed22`. Cost: 3 divisions,
+    /// 3 multiplies, 2 comparisons (only 1 at or below the knee).
+    #[inline]
+    pub fn apply<T: Real>(self, x: T) -> T {
+        let k = T::from_u32(self.knee as u32).div_u32(100);
+        let w = self.white::<T>();
+        if x > k {
+            if x < w {
+                // k + s h(t / s) with t = x - k, multiplied out: k + s t (1 + c t) / (s + t),
+                // c t = s (t / d) / d, d = W - k (no d^2: it would leave Fixed22's range for a
+                // white point near 128, and a tiny c would lose its bits there).
+                let s = T::ONE - k;
+                let t = x - k;
+                let d = w - k;
+                let ct = s * (t / d) / d;
+                let h = t * (T::ONE + ct) / (s + t);
+                (k + s * h).clamp01()
+            } else {
+                T::ONE
+            }
+        } else {
+            // At or below the knee, negative or NaN.
+            x.clamp01()
+        }
+    }
 }
 
 impl Encoding {
-    /// Encodes one linear channel value: clamped to [0, 1] (NaN as 0), then the transfer
-    /// function. Exact to the backend's `sqrt`/`powf`. Cost: see the variants.
+    /// Encodes one linear channel value: clamped to [0, 1] (NaN as 0), or tone-mapped for
+    /// [`Encoding::SrgbTone`], then the transfer function. Exact to the backend's
+    /// `sqrt`/`powf`. Cost: see the variants.
     #[inline]
     pub fn encode<T: Real>(self, x: T) -> T {
-        let x = x.clamp01();
+        let x = match self {
+            Encoding::SrgbTone(t) => t.apply(x),
+            _ => x.clamp01(),
+        };
         match self {
             Encoding::Linear => x,
             Encoding::Gamma2 => x.sqrt(),
-            Encoding::Srgb => {
+            Encoding::Srgb | Encoding::SrgbTone(_) => {
                 if x <= T::from_f64(0.003_130_8) {
                     T::from_f64(12.92) * x
                 } else {
@@ -33,6 +135,14 @@ impl Encoding {
                         .clamp01()
                 }
             }
+        }
+    }
+    /// The linear value that encodes as white: 1, or the tone curve's white point.
+    #[inline]
+    pub fn white<T: Real>(self) -> T {
+        match self {
+            Encoding::SrgbTone(t) => t.white(),
+            _ => T::ONE,
         }
     }
 }
@@ -157,12 +267,21 @@ pub const ENCODE_ENTRIES: usize = (1 << ENCODE_INDEX_BITS) + 1;
 /// functions (a square root each for [`Encoding::Gamma2`], a `powf` for [`Encoding::Srgb`]:
 /// about 3300 instructions per pixel in `Fixed22` on a Cortex-M0+).
 ///
+/// A tone-mapped table ([`Encoding::SrgbTone`]) spans the curve's white point `W` instead of
+/// 1 in the same 4097 entries (steps of `W`/4096; every value at or above `W` is white, which
+/// the index clamp gives for free), so the tone curve costs nothing per pixel: draw through it
+/// with the exposure multiplied by [`EncodeTable::exposure_scale`] (`1 / W`).
+///
 /// Accuracy: the linear value is rounded to 1/4096 before encoding, so a channel can differ
 /// from [`encode_pixel`]'s where the exact value lies near a rounding boundary: by at most one
 /// level of RGB565 for every encoding, and of RGB888 for `Linear` and `Srgb`; by up to 3
 /// levels of RGB888 for `Gamma2` near black, where the square root is steep (measured over
-/// every input on a 1/65536 grid in `tests/raster_prepared.rs`). Size: 8 KiB (4097 16-bit levels); build it once (`static`, `singleton!` or `main`'s
-/// frame) and share it between draw calls. Cost to build: 4097 [`Encoding::encode`] calls.
+/// every input on a 1/65536 grid in `tests/raster_prepared.rs`). A tone-mapped table's coarser
+/// steps (`W`/4096) cost more near black, where sRGB is steep: indexed as the prepared path
+/// does (the scaled value truncated to a step), up to 1 level of RGB565 and 4 of RGB888 with
+/// `W` = 4, 1 and 2 with `W` = 2 (measured in `tests/raster_tone.rs`). Size: 8 KiB (4097 16-bit
+/// levels); build it once (`static`, `singleton!` or `main`'s frame) and share it between draw
+/// calls. Cost to build: 4097 [`Encoding::encode`] calls.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EncodeTable {
     encoding: Encoding,
@@ -185,10 +304,15 @@ impl EncodeTable {
             levels: [0; ENCODE_ENTRIES],
         }
     }
-    /// Tabulates `encoding` in place (see [`EncodeTable::new`]).
+    /// Tabulates `encoding` in place (see [`EncodeTable::new`]): entry `i` holds the encoding
+    /// of the linear value `i W / 4096`, `W` = [`Encoding::white`] (1 unless tone-mapped).
     pub fn fill<T: Real>(&mut self, encoding: Encoding) {
+        let white = encoding.white::<T>();
+        let tone = matches!(encoding, Encoding::SrgbTone(_));
         for (i, l) in self.levels.iter_mut().enumerate() {
             let x = T::from_fixed_i32(i as i32, ENCODE_INDEX_BITS);
+            // Untoned tables keep `x` exactly as before (no multiplication by 1).
+            let x = if tone { x * white } else { x };
             *l = quantize(encoding.encode(x), u16::MAX as u32) as u16;
         }
         self.encoding = encoding;
@@ -197,8 +321,13 @@ impl EncodeTable {
     pub fn encoding(&self) -> Encoding {
         self.encoding
     }
-    /// The pixel for linear channels given as indices (1.0 = 4096; clamped to `0..=4096`).
-    /// Cost: 3 clamps, 3 loads, the format's packing.
+    /// What to multiply the draw call's exposure by when drawing through this table: 1, or
+    /// `1 / W` for a tone-mapped table (whose entries span the curve's white point `W`).
+    pub fn exposure_scale<T: Real>(&self) -> T {
+        T::ONE / self.encoding.white::<T>()
+    }
+    /// The pixel for linear channels given as indices (1.0 = 4096, or `W` for a tone-mapped
+    /// table; clamped to `0..=4096`). Cost: 3 clamps, 3 loads, the format's packing.
     #[inline(always)]
     pub fn pixel<P: PixelFormat>(&self, r: i32, g: i32, b: i32) -> P {
         let at = |i: i32| {
