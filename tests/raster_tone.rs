@@ -3,7 +3,8 @@
 //! operator on the excess, written as the textbook formula rather than the crate's
 //! multiplied-out form), its shape (continuity and slope at the knee, white at the white
 //! point, monotone, in [0, 1] for every input including NaN and infinities), and the
-//! tone-mapped `EncodeTable` against `encode_pixel`.
+//! tone-mapped `EncodeTable` against `encode_pixel`; and `Camera::with_viewport`, which the
+//! host's supersampled renders use.
 
 use arealight::raster::{
     encode_pixel, EncodeTable, Encoding, RasterError, Rgb565, Rgb888, ToneMap,
@@ -225,4 +226,39 @@ fn a_tone_mapped_table_is_within_a_level_of_encode_pixel() {
     for enc in [Encoding::Linear, Encoding::Gamma2, Encoding::Srgb] {
         assert_eq!(EncodeTable::new::<f32>(enc).exposure_scale::<f32>(), 1.0);
     }
+}
+
+#[test]
+fn a_camera_with_k_times_the_viewport_projects_to_k_times_the_pixels() {
+    // Camera::with_viewport, for supersampling: the same view, every pixel coordinate scaled.
+    use arealight::raster::{Camera, Projection};
+    use arealight::Vec3;
+    let cam = Camera::new(
+        Vec3::new(0.3, 2.7, 5.2),
+        Vec3::new(0.0, 0.35, -0.1),
+        Vec3::new(0.0, 1.0, 0.0),
+        Projection::Perspective { fov_y: 0.73f64 },
+        220,
+        180,
+    )
+    .unwrap();
+    for k in [1u16, 2, 3, 4] {
+        let big = cam.with_viewport(220 * k, 180 * k).unwrap();
+        assert_eq!((big.width(), big.height()), (220 * k, 180 * k));
+        for p in [[0.0, 0.0, 0.0], [1.0, 0.2, -1.3], [-2.0, 1.5, 0.5]] {
+            let p = Vec3::new(p[0], p[1], p[2]);
+            let (x, y) = cam.project(p).unwrap();
+            let (xk, yk) = big.project(p).unwrap();
+            let k = f64::from(k);
+            assert!(
+                (xk - k * x).abs() < 1e-9 && (yk - k * y).abs() < 1e-9,
+                "{k}"
+            );
+        }
+    }
+    assert_eq!(
+        cam.with_viewport(0, 10),
+        Err(RasterError::BadSize("viewport"))
+    );
+    assert!(cam.with_viewport(4097, 10).is_err());
 }

@@ -474,6 +474,21 @@ impl<T: Real> Camera<T> {
         Ok(self)
     }
 
+    /// The same camera (eye, orientation, vertical field of view or height) for a `width` x
+    /// `height` viewport: for supersampling, `k` times each side.
+    ///
+    /// # Errors
+    /// [`RasterError::BadSize`] (`"viewport"`) for a side of 0 or above [`MAX_VIEWPORT`].
+    pub fn with_viewport(mut self, width: u16, height: u16) -> Result<Self, RasterError> {
+        if width == 0 || height == 0 || width > MAX_VIEWPORT || height > MAX_VIEWPORT {
+            return Err(RasterError::BadSize("viewport"));
+        }
+        self.sx = self.sy / (T::from_u32(width as u32) / T::from_u32(height as u32));
+        self.width = width;
+        self.height = height;
+        Ok(self)
+    }
+
     /// The viewport width in pixels.
     pub fn width(&self) -> u16 {
         self.width
