@@ -7,7 +7,9 @@
 #
 # Output under the repository's target/rp2040-emu/: reference/ (host frames), lit_scene/ and
 # lit_scene_dual_core/ (emulated frames, .rgb565 and .png), the run logs, and frames.md (the
-# cycles table, for README.md). Exits non-zero if a run fails or a frame differs.
+# cycles table, for README.md), frames.csv (the same frames, per stage, for `host-sim budget
+# --scene --check`), and calibration.csv (the `calibrate` binary's unit costs, for `host-sim
+# budget --calibrate`). Exits non-zero if a run fails or a frame differs.
 set -euo pipefail
 
 frames=${1:-2}
@@ -57,10 +59,22 @@ for bin in lit_scene lit_scene_dual_core; do
   fi
 done
 
-echo "== cycles per frame ($out/frames.md)"
-if node "$here/report.mjs" table "${logs[@]}" >"$out/frames.md"; then
+echo "== cycles per frame ($out/frames.md, $out/frames.csv)"
+if node "$here/report.mjs" table "${logs[@]}" >"$out/frames.md" &&
+  node "$here/report.mjs" csv "${logs[@]}" >"$out/frames.csv"; then
   cat "$out/frames.md"
 else
+  status=1
+fi
+
+echo "== calibrate: unit costs for host-sim budget --scene ($out/calibration.csv)"
+set +e
+node "$here/run.mjs" --elf "$elf_dir/calibrate" --until "calibration done" >"$out/calibrate.log" 2>&1
+run_status=$?
+set -e
+grep -E '^(\[defmt\]|error:)' "$out/calibrate.log" || true
+if [ $run_status -ne 0 ] || ! node "$here/report.mjs" costs "$out/calibrate.log" >"$out/calibration.csv"; then
+  echo "calibrate: the emulator run failed (log: $out/calibrate.log)"
   status=1
 fi
 if [ $status -eq 0 ]; then echo "rp2040-emu: all frames identical to the host render"; fi

@@ -139,8 +139,54 @@ function stageTable(logs) {
   return out;
 }
 
+/**
+ * The frames as CSV (for `host-sim budget --scene --check`): one row per frame the firmware
+ * logged, its stages in cycles (the firmware's microseconds times 125), its counts, and the
+ * emulator's whole-frame cycles.
+ */
+function csv(logs) {
+  const out = ['firmware,cores,frame,cycles,setup,transform,shade,raster,flush,wait,shader_calls,pixels,triangle_setups'];
+  for (const log of logs) {
+    const s = summaryOf(log);
+    const name = basename(s.elf);
+    for (const l of s.defmt) {
+      const m = (l.text ?? '').match(/^frame (\d+): (\d+) us[^(]*\(([^)]*)\), (\d+) shader calls[^,]*, (\d+) pixels, (\d+) triangle setups/);
+      if (!m) continue;
+      const n = Number(m[1]);
+      const stages = new Map(m[3].split(', ').map((part) => {
+        const p = part.match(/^(.*) (\d+)$/);
+        return p ? [p[1], Number(p[2]) * 125] : [part, 0];
+      }));
+      const frame = s.frames.find((f) => f.n === n);
+      const get = (k) => stages.get(k) ?? 0;
+      out.push([name, s.dual ? 2 : 1, n, frame ? frame.cycles : '', get('setup'), get('transform'), get('shade'), get('raster'),
+        get('flush'), get('waiting for core 1'), m[4], m[5], m[6]].join(','));
+    }
+  }
+  console.log(out.join('\n'));
+  return 0;
+}
+
+/** The calibration's `cost` lines as CSV: item,count,setups,calls,cycles. */
+function costs(log) {
+  const s = summaryOf(log);
+  const out = ['item,count,setups,calls,ticks'];
+  for (const l of s.defmt) {
+    const m = (l.text ?? '').match(/^cost (\S+) (\d+) (\d+) (\d+) (\d+)$/);
+    if (m) out.push(m.slice(1).join(','));
+  }
+  if (out.length === 1) {
+    console.error(`${log}: no cost lines`);
+    return 1;
+  }
+  console.log(out.join('\n'));
+  return 0;
+}
+
 const [cmd, ...args] = process.argv.slice(2);
+if (cmd === 'csv' && args.length > 0) process.exit(csv(args));
+if (cmd === 'costs' && args.length === 1) process.exit(costs(args[0]));
 if (cmd === 'compare' && args.length === 3) process.exit(compare(args[0], args[1], Number(args[2])));
 if (cmd === 'table' && args.length > 0) process.exit(table(args));
-console.error('usage: node report.mjs compare REF_DIR DUMP_DIR N | table LOG...');
+console.error('usage: node report.mjs compare REF_DIR DUMP_DIR N | table LOG... | csv LOG... | costs LOG');
 process.exit(2);

@@ -4,7 +4,10 @@
 // frame, and its defmt log (from RTT). See README.md.
 //
 //   node run.mjs --elf PATH [--frames N] [--dual] [--dump-frames DIR] [--max-cycles C]
-//                [--profile] [--profile-every K]
+//                [--profile] [--profile-every K] [--until TEXT]
+//
+// --until TEXT runs until a defmt line contains TEXT (a firmware that sends no frames, e.g.
+// `calibrate`), instead of until N frames.
 //
 // Exits non-zero on a fault (BKPT/UDF, e.g. panic-probe; unimplemented instruction; unmapped
 // memory), a defmt error line, a malformed ST7789 stream, or the cycle budget running out
@@ -40,6 +43,7 @@ const { values: opts } = parseArgs({
     profile: { type: 'boolean', default: false },
     'profile-every': { type: 'string', default: '997' },
     quiet: { type: 'boolean', default: false },
+    until: { type: 'string' },
   },
 });
 if (!opts.elf) {
@@ -132,6 +136,7 @@ function drainLog() {
     log(`[defmt] @${at} ${level}${l.text}`);
     defmtLines.push({ cycle: at, level: l.level, text: l.text });
     if (l.level === 'error') errors.push(`defmt error: ${l.text}`);
+    if (opts.until && (l.text ?? '').includes(opts.until)) untilSeen = true;
   }
   return lines.length;
 }
@@ -142,18 +147,21 @@ const every = Number(opts['profile-every']);
 const started = process.hrtime.bigint();
 const cpuStarted = process.cpuUsage();
 let tailEnd = null;
+let untilSeen = false;
 while (!errors.length && !display.errors.length) {
   const end = Math.min(machine.cycles + CHUNK, maxCycles, tailEnd ?? Infinity);
   const ok = machine.runTo(end, profile ? (pc) => profile.sample(pc) : null, every);
   const newLines = drainLog();
   if (!ok) break;
-  if (frames.length >= wanted) {
+  if (untilSeen) break;
+  if (!opts.until && frames.length >= wanted) {
     // The firmware logs a frame's time after sending it: wait a little for that line.
     if (tailEnd === null) tailEnd = machine.cycles + TAIL;
     else if (newLines || machine.cycles >= tailEnd) break;
   }
   if (machine.cycles >= maxCycles) {
-    if (frames.length < wanted) errors.push(`cycle budget (${maxCycles}) ran out after ${frames.length} of ${wanted} frames`);
+    if (opts.until) errors.push(`cycle budget (${maxCycles}) ran out before a defmt line with ${JSON.stringify(opts.until)}`);
+    else if (frames.length < wanted) errors.push(`cycle budget (${maxCycles}) ran out after ${frames.length} of ${wanted} frames`);
     break;
   }
 }

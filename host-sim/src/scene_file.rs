@@ -13,11 +13,11 @@
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use arealight::raster::{Affine, Camera, Material, Projection, RasterError, Shading};
+use arealight::raster::{Affine, Camera, Encoding, Material, Projection, RasterError, Shading};
 use arealight::{
     Ambient, CapLight, DirectionalLight, Environment, HemisphereLight, Illuminant, LineLight,
-    OvercastSky, ParallelogramLight, PointLight, PolygonLight, Rgb, Sh9, SkyGround, SphereLight,
-    Tinted, Vec3,
+    OvercastSky, ParallelogramLight, PointLight, PolygonLight, Real, Rgb, Sh9, SkyGround,
+    SphereLight, Tinted, Vec3,
 };
 use serde::Deserialize;
 use toml::Spanned;
@@ -63,6 +63,8 @@ struct CameraDef {
     /// Omitted: 0.8 over the lights' diffuse value at the origin with normal +y.
     exposure: Option<S<f64>>,
     background: Option<S<[i64; 3]>>,
+    /// `"srgb"` (default), `"gamma2"` or `"linear"`.
+    encoding: Option<S<String>>,
 }
 
 #[derive(Deserialize)]
@@ -92,7 +94,9 @@ struct LightDef {
 #[serde(deny_unknown_fields)]
 struct MaterialDef {
     name: S<String>,
-    diffuse: S<[f64; 3]>,
+    diffuse: Option<S<[f64; 3]>>,
+    /// Constant radiance instead of diffuse and specular reflection (a visible lamp).
+    emissive: Option<S<[f64; 3]>>,
     specular: Option<S<[f64; 3]>>,
     exponent: Option<S<i64>>,
 }
@@ -296,7 +300,7 @@ fn need<'a, T>(
         .ok_or_else(|| at(pos, format!("a {what} needs `{key}`")))
 }
 
-fn v3(a: [f64; 3]) -> Vec3<f32> {
+fn v3<T: Real>(a: [f64; 3]) -> Vec3<T> {
     Vec3::from_f64(a)
 }
 
@@ -399,7 +403,10 @@ fn light_error(l: &LightDef, pos: usize, e: arealight::Error) -> Located {
     }
 }
 
-fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Located> {
+fn build_light<T: Real + 'static>(
+    l: &LightDef,
+    pos: usize,
+) -> Result<(Box<dyn Illuminant<T>>, LightInfo), Located> {
     let k = l.kind.get_ref().as_str();
     let Some((_, keys)) = LIGHT_KINDS.iter().find(|(n, _)| *n == k) else {
         let names: Vec<&str> = LIGHT_KINDS.iter().map(|(n, _)| *n).collect();
@@ -416,14 +423,15 @@ fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Loc
     allowed.extend_from_slice(keys);
     only_keys(&l.present(), &allowed, &format!("{k} light"))?;
     let what = format!("{k} light");
-    let vec = |x: &Option<S<[f64; 3]>>, key: &str| -> Result<Vec3<f32>, Located> {
+    let vec = |x: &Option<S<[f64; 3]>>, key: &str| -> Result<Vec3<T>, Located> {
         Ok(v3(finite(key, need(x, &what, key, pos)?)?))
     };
-    let rgb = |x: &Option<S<[f64; 3]>>, key: &str| -> Result<Rgb<f32>, Located> {
+    let rgb = |x: &Option<S<[f64; 3]>>, key: &str| -> Result<Rgb<T>, Located> {
         Ok(Rgb::from_f64(finite(key, need(x, &what, key, pos)?)?))
     };
     let e = |e: arealight::Error| light_error(l, pos, e);
-    let light: Box<dyn Illuminant<f32>> = match k {
+    let mut vertices = 0;
+    let light: Box<dyn Illuminant<T>> = match k {
         "directional" => {
             Box::new(DirectionalLight::new(vec(&l.direction, "direction")?).map_err(e)?)
         }
@@ -440,7 +448,7 @@ fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Loc
             )
         }
         "hemisphere" => Box::new(HemisphereLight::new(vec(&l.axis, "axis")?).map_err(e)?),
-        "overcast" => Box::new(OvercastSky::new(vec(&l.axis, "axis")?, 1.0).map_err(e)?),
+        "overcast" => Box::new(OvercastSky::new(vec(&l.axis, "axis")?, T::ONE).map_err(e)?),
         "sky_ground" => Box::new(
             SkyGround::new(
                 vec(&l.axis, "axis")?,
@@ -461,9 +469,7 @@ fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Loc
             Box::new(
                 CapLight::new(
                     axis,
-                    (sigma as f32)
-                        .to_radians()
-                        .min(core::f32::consts::FRAC_PI_2),
+                    T::from_f64(sigma.to_radians().min(core::f64::consts::FRAC_PI_2)),
                 )
                 .map_err(e)?,
             )
@@ -472,7 +478,7 @@ fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Loc
             let center = vec(&l.center, "center")?;
             let r = need(&l.radius, &what, "radius", pos)?;
             let r = in_range("radius", r, |x| x > 0.0, "> 0")?;
-            Box::new(SphereLight::new(center, r as f32).map_err(e)?)
+            Box::new(SphereLight::new(center, T::from_f64(r)).map_err(e)?)
         }
         "polygon" => {
             let vs = need(&l.vertices, &what, "vertices", pos)?;
@@ -491,8 +497,9 @@ fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Loc
                     ),
                 ));
             }
-            let vs: Vec<Vec3<f32>> = vs.get_ref().iter().map(|&p| v3(p)).collect();
-            Box::new(PolygonLight::<f32, MAX_POLYGON>::new(&vs).map_err(e)?)
+            let vs: Vec<Vec3<T>> = vs.get_ref().iter().map(|&p| v3(p)).collect();
+            vertices = vs.len();
+            Box::new(PolygonLight::<T, MAX_POLYGON>::new(&vs).map_err(e)?)
         }
         "line" => Box::new(LineLight::new(vec(&l.a, "a")?, vec(&l.b, "b")?).map_err(e)?),
         "parallelogram" => Box::new(
@@ -524,16 +531,25 @@ fn build_light(l: &LightDef, pos: usize) -> Result<Box<dyn Illuminant<f32>>, Loc
                     }
                 }
             };
-            Box::new(Sh9::<f32>::environment(env).prepare())
+            Box::new(Sh9::<T>::environment(env).prepare())
         }
-        _ => Box::new(Ambient(Rgb::splat(1.0f32))),
+        _ => Box::new(Ambient(Rgb::splat(T::ONE))),
     };
     let colour = match &l.colour {
         Some(c) => finite("colour", c)?,
         None => [1.0; 3],
     };
-    Ok(Box::new(
-        Tinted::new(Lights(vec![light]), Rgb::from_f64(colour)).map_err(e)?,
+    let info = LightInfo {
+        kind: LIGHT_KINDS
+            .iter()
+            .find(|(n, _)| *n == k)
+            .map_or("ambient", |(n, _)| *n),
+        vertices,
+        line: 0,
+    };
+    Ok((
+        Box::new(Tinted::new(Lights(vec![light]), Rgb::from_f64(colour)).map_err(e)?),
+        info,
     ))
 }
 
@@ -571,7 +587,7 @@ fn grid_fits(a: u16, b: u16, keys: &str, span: Range<usize>) -> Result<(), Locat
     }
 }
 
-fn build_mesh(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<f32>, Located> {
+fn build_mesh<T: Real>(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<T>, Located> {
     let k = m.kind.get_ref().as_str();
     let Some((_, keys)) = MESH_KINDS.iter().find(|(n, _)| *n == k) else {
         let names: Vec<&str> = MESH_KINDS.iter().map(|(n, _)| *n).collect();
@@ -685,7 +701,7 @@ fn build_mesh(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<f32>, Located> 
 }
 
 /// The mesh's transform: scale, then rotate, then translate.
-fn transform(d: &MeshDef) -> Result<Affine<f32>, Located> {
+fn transform<T: Real>(d: &MeshDef) -> Result<Affine<T>, Located> {
     let mut xf = Affine::identity();
     if let Some(s) = &d.scale {
         let v = finite("scale", s)?;
@@ -706,7 +722,7 @@ fn transform(d: &MeshDef) -> Result<Affine<f32>, Located> {
             ));
         }
         xf = xf.then(
-            &Affine::rotation(v3([x, y, z]), (deg as f32).to_radians())
+            &Affine::rotation(v3([x, y, z]), T::from_f64(deg.to_radians()))
                 .map_err(|e| at_key(r.span(), format!("`rotate`: {e}")))?,
         );
     }
@@ -720,7 +736,7 @@ fn transform(d: &MeshDef) -> Result<Affine<f32>, Located> {
     Ok(xf)
 }
 
-fn build_camera(cam: &CameraDef, pos: usize) -> Result<Camera<f32>, Located> {
+fn build_camera<T: Real>(cam: &CameraDef, pos: usize) -> Result<Camera<T>, Located> {
     let eye = finite("eye", &cam.eye)?;
     let target = finite("target", &cam.target)?;
     let up = match &cam.up {
@@ -750,7 +766,7 @@ fn build_camera(cam: &CameraDef, pos: usize) -> Result<Camera<f32>, Located> {
         v3(target),
         v3(up),
         Projection::Perspective {
-            fov_y: (fov as f32).to_radians(),
+            fov_y: T::from_f64(fov.to_radians()),
         },
         width,
         height,
@@ -779,15 +795,23 @@ fn build_camera(cam: &CameraDef, pos: usize) -> Result<Camera<f32>, Located> {
     })
 }
 
-fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located> {
+fn build<T: Real + 'static>(
+    file: &File,
+    src: &str,
+    warnings: &mut Vec<Located>,
+) -> Result<(Scene<T>, Vec<LightInfo>, Vec<ObjectInfo>), Located> {
     let cam = file.camera.get_ref();
     let camera = build_camera(cam, file.camera.span().start)?;
     let mut lights = Vec::new();
+    let mut light_info = Vec::new();
     for l in &file.light {
-        lights.push(build_light(l.get_ref(), l.span().start)?);
+        let (light, mut info) = build_light(l.get_ref(), l.span().start)?;
+        info.line = line_col(src, l.span().start).0;
+        lights.push(light);
+        light_info.push(info);
     }
     let lights = Lights(lights);
-    let mut materials: Vec<(String, Material<f32>)> = Vec::new();
+    let mut materials: Vec<(String, Finish<T>)> = Vec::new();
     for m in &file.material {
         let d = m.get_ref();
         let name = d.name.get_ref();
@@ -797,7 +821,35 @@ fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located
                 format!("a second material named {name:?} (names must be unique)"),
             ));
         }
-        let diffuse = finite("diffuse", &d.diffuse)?;
+        if let Some(e) = &d.emissive {
+            let emitted = finite("emissive", e)?;
+            if emitted.iter().any(|&c| c < 0.0) {
+                return Err(at_key(
+                    e.span(),
+                    "`emissive` has a negative channel: each must be >= 0",
+                ));
+            }
+            let other = [
+                ("diffuse", span_of(&d.diffuse)),
+                ("specular", span_of(&d.specular)),
+                ("exponent", span_of(&d.exponent)),
+            ];
+            if let Some((key, Some(span))) = other.into_iter().find(|(_, s)| s.is_some()) {
+                return Err(at_key(
+                    span,
+                    format!("`{key}` in an emissive material: an `emissive` material shines with its own colour and takes no `diffuse`, `specular` or `exponent`"),
+                ));
+            }
+            materials.push((name.clone(), Finish::Emissive(Rgb::from_f64(emitted))));
+            continue;
+        }
+        let Some(diffuse) = &d.diffuse else {
+            return Err(at(
+                m.span().start,
+                "missing key `diffuse` in [[material]] (or `emissive` for a light's own glow)",
+            ));
+        };
+        let diffuse = finite("diffuse", diffuse)?;
         let specular = match &d.specular {
             Some(s) => finite("specular", s)?,
             None => [0.0; 3],
@@ -827,9 +879,10 @@ fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located
         };
         let mat = Material::new(Rgb::from_f64(diffuse), Rgb::from_f64(specular), exponent)
             .map_err(|e| at(m.span().start, e.to_string()))?;
-        materials.push((name.clone(), mat));
+        materials.push((name.clone(), Finish::Lit(mat)));
     }
     let mut objects = Vec::new();
+    let mut object_info = Vec::new();
     for m in &file.mesh {
         let (d, pos) = (m.get_ref(), m.span().start);
         let name = d.material.get_ref();
@@ -851,6 +904,20 @@ fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located
         };
         let mesh = build_mesh(d, pos)?;
         let xf = transform(d)?;
+        object_info.push(ObjectInfo {
+            kind: MESH_KINDS
+                .iter()
+                .find(|(n, _)| *n == d.kind.get_ref().as_str())
+                .map_or("mesh", |(n, _)| *n),
+            line: line_col(src, pos).0,
+            material: name.clone(),
+            vertices: mesh.verts.len(),
+            triangles: mesh.tris.len(),
+        });
+        let surface = match mat {
+            Finish::Lit(m) => Surface::Lit(*m),
+            Finish::Emissive(c) => Surface::Emissive(*c),
+        };
         objects.push(Object {
             shading: if d.gouraud.as_ref().is_some_and(|g| *g.get_ref()) {
                 Shading::Gouraud
@@ -858,11 +925,11 @@ fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located
                 Shading::PerPixel
             },
             two_sided: d.two_sided.as_ref().is_some_and(|t| *t.get_ref()),
-            ..Object::new(mesh, xf, Surface::Lit(*mat))
+            ..Object::new(mesh, xf, surface)
         });
     }
     let exposure = match &cam.exposure {
-        Some(x) => in_range("exposure", x, |x| x > 0.0, "> 0")? as f32,
+        Some(x) => T::from_f64(in_range("exposure", x, |x| x > 0.0, "> 0")?),
         None => scenes::exposure_at(&lights, v3([0.0; 3]), v3([0.0, 1.0, 0.0])),
     };
     let background = match &cam.background {
@@ -880,14 +947,67 @@ fn build(file: &File, warnings: &mut Vec<Located>) -> Result<Scene<f32>, Located
         }
         None => [0; 3],
     };
-    Ok(Scene {
-        camera,
-        objects,
-        lights,
-        exposure,
-        background,
-        encoding: arealight::raster::Encoding::Srgb,
-    })
+    let encoding = match &cam.encoding {
+        None => Encoding::Srgb,
+        Some(e) => match e.get_ref().as_str() {
+            "srgb" => Encoding::Srgb,
+            "gamma2" => Encoding::Gamma2,
+            "linear" => Encoding::Linear,
+            other => {
+                return Err(at_key(
+                    e.span(),
+                    format!(
+                        "unknown encoding {other:?}{}; encodings: srgb, gamma2, linear",
+                        did_you_mean(other, ["srgb", "gamma2", "linear"].into_iter())
+                    ),
+                ))
+            }
+        },
+    };
+    Ok((
+        Scene {
+            camera,
+            objects,
+            lights,
+            exposure,
+            background,
+            encoding,
+        },
+        light_info,
+        object_info,
+    ))
+}
+
+/// A material as the file gives it: lit by the scene's lights, or glowing on its own.
+enum Finish<T> {
+    Lit(Material<T>),
+    Emissive(Rgb<T>),
+}
+
+/// What a scene file's light is, for budgets (`host-sim budget --scene`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LightInfo {
+    /// Its `kind` (`"polygon"`, `"sphere"`, ...).
+    pub kind: &'static str,
+    /// A polygon light's vertex count (0 for other kinds).
+    pub vertices: usize,
+    /// The line of its `[[light]]` header.
+    pub line: usize,
+}
+
+/// What a scene file's mesh is, for budgets (`host-sim budget --scene`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ObjectInfo {
+    /// Its `kind` (`"sphere"`, `"torus"`, ...).
+    pub kind: &'static str,
+    /// The line of its `[[mesh]]` header.
+    pub line: usize,
+    /// Its material's name.
+    pub material: String,
+    /// Vertices of its mesh.
+    pub vertices: usize,
+    /// Triangles of its mesh.
+    pub triangles: usize,
 }
 
 /// A TOML error's message with a suggestion for an unknown key: serde's "unknown field `x`,
@@ -908,11 +1028,15 @@ fn toml_message(msg: &str) -> String {
 }
 
 /// A parsed scene and its warnings (`name:line:column: warning: ...`).
-pub struct Parsed {
+pub struct Parsed<T = f32> {
     /// The scene.
-    pub scene: Scene<f32>,
+    pub scene: Scene<T>,
     /// Warnings (the scene renders, perhaps slowly).
     pub warnings: Vec<String>,
+    /// The lights, in file order (the scene's lights are in the same order).
+    pub lights: Vec<LightInfo>,
+    /// The meshes, in file order (the scene's objects are in the same order).
+    pub objects: Vec<ObjectInfo>,
 }
 
 /// Parses and builds the scene in `src` (named `name` in messages).
@@ -921,6 +1045,16 @@ pub struct Parsed {
 /// `name:line:column: message` for a syntax error, an unknown or mistyped key, a value out of
 /// range, or a value the library refuses.
 pub fn parse(name: &str, src: &str) -> Result<Parsed, String> {
+    parse_as::<f32>(name, src)
+}
+
+/// [`parse`] in any scalar type `T` (the lights, meshes, camera and materials built in `T`,
+/// from the file's decimal values): what `host-sim budget --scene` renders each backend with.
+///
+/// # Errors
+/// As [`parse`]; also a value the library refuses in `T` (for example a coordinate beyond
+/// the fixed-point range).
+pub fn parse_as<T: Real + 'static>(name: &str, src: &str) -> Result<Parsed<T>, String> {
     let located = |l: Located| {
         let (line, col) = line_col(src, resolve(src, &l));
         format!("{name}:{line}:{col}: {}", l.msg)
@@ -934,7 +1068,7 @@ pub fn parse(name: &str, src: &str) -> Result<Parsed, String> {
         })
     })?;
     let mut warnings = Vec::new();
-    let scene = build(&file, &mut warnings).map_err(located)?;
+    let (scene, lights, objects) = build(&file, src, &mut warnings).map_err(located)?;
     let warnings = warnings
         .into_iter()
         .map(|w| {
@@ -942,7 +1076,12 @@ pub fn parse(name: &str, src: &str) -> Result<Parsed, String> {
             format!("{name}:{line}:{col}: warning: {}", w.msg)
         })
         .collect();
-    Ok(Parsed { scene, warnings })
+    Ok(Parsed {
+        scene,
+        warnings,
+        lights,
+        objects,
+    })
 }
 
 /// Renders the scene file `path` into `out/<file stem>.png`; warnings go to standard error.
@@ -952,7 +1091,9 @@ pub fn parse(name: &str, src: &str) -> Result<Parsed, String> {
 pub fn render_file(path: &Path, out: &Path) -> Result<PathBuf, String> {
     let src = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let Parsed { scene, warnings } = parse(&path.display().to_string(), &src)?;
+    let Parsed {
+        scene, warnings, ..
+    } = parse(&path.display().to_string(), &src)?;
     for w in &warnings {
         eprintln!("{w}");
     }

@@ -11,7 +11,9 @@
 //!
 //! It prints the instructions per stage of each frame (exact; see the firmware's module docs
 //! for what each count includes) as a markdown table, and writes it to
-//! `target/qemu-frame/frames.md` and `target/qemu-frame/frames.csv`.
+//! `target/qemu-frame/frames.md` and `target/qemu-frame/frames.csv`, and the unit costs the
+//! firmware measured after its frames (`demo_scene::calibrate`, for `host-sim budget
+//! --calibrate`) to `target/qemu-frame/calibration.csv`.
 //!
 //! Without `qemu-system-arm` it prints SKIPPED and passes, unless the environment variable
 //! `CI` is set, where it fails. Run it alone with `cargo test -p host-sim --test qemu_frame`.
@@ -64,6 +66,9 @@ struct Output {
     frames: BTreeMap<(String, u32), Frame>,
     selfcheck: Vec<(String, u32)>,
     stack: Option<(u32, u32)>,
+    /// The unit-cost calibration's lines (`demo_scene::calibrate`): CSV rows
+    /// `item,count,setups,calls,ticks`.
+    costs: Vec<String>,
 }
 
 /// Builds the firmware (release) into `target_dir`; the ELF's path.
@@ -163,6 +168,12 @@ fn parse(text: &str) -> Result<Output, String> {
                         Some((k.to_owned(), v.parse().ok()?))
                     })
                     .collect();
+            }
+            Some("COST") if f.len() == 6 => {
+                for i in 2..6 {
+                    num(i)?;
+                }
+                out.costs.push(f[1..].join(","));
             }
             Some("STACK") if f.len() == 3 => out.stack = Some((num(1)?, num(2)?)),
             Some("FAIL") => return Err(format!("the firmware failed: {l}")),
@@ -353,9 +364,14 @@ fn check(out_dir: &Path) -> Result<String, Vec<String>> {
         }
     }
     let (md, csv) = tables(&out.frames);
+    if out.costs.is_empty() {
+        failed.push("no COST lines (the calibration did not run)".into());
+    }
+    let costs = format!("item,count,setups,calls,ticks\n{}\n", out.costs.join("\n"));
     let written = std::fs::create_dir_all(out_dir)
         .and_then(|()| std::fs::write(out_dir.join("frames.md"), &md))
-        .and_then(|()| std::fs::write(out_dir.join("frames.csv"), &csv));
+        .and_then(|()| std::fs::write(out_dir.join("frames.csv"), &csv))
+        .and_then(|()| std::fs::write(out_dir.join("calibration.csv"), &costs));
     if let Err(e) = written {
         failed.push(format!("writing {}: {e}", out_dir.display()));
     }
@@ -402,7 +418,10 @@ fn main() -> ExitCode {
                 "\ninstructions per stage of the demo frame (exact, QEMU icount; f32 on the \
                  Cortex-M4F; ms: a lower bound at {MHZ} MHz)\n\n{md}"
             );
-            println!("wrote {}/frames.md and frames.csv", out_dir.display());
+            println!(
+                "wrote {}/frames.md, frames.csv and calibration.csv",
+                out_dir.display()
+            );
             println!("1 passed, 0 failed");
             ExitCode::SUCCESS
         }

@@ -12,7 +12,9 @@
 //! FRAME <mode> <n> <total> <setup> <transform> <shade> <raster> <flush> <shader calls> <pixels> <triangle setups>
 //! ```
 //!
-//! (one `B` line per band, 15 per frame, printed by the flush), then `STACK <used> <size>`
+//! (one `B` line per band, 15 per frame, printed by the flush), then the unit costs of
+//! `demo_scene::calibrate` (`COST <item> <count> <triangle setups> <shader calls>
+//! <instructions>`, for `host-sim budget --scene`), then `STACK <used> <size>`
 //! (the most stack used, in bytes, of the stack's size) and `DONE`; before them an `INFO` line
 //! and the counter self-check's `SELF` line. `host-sim/tests/qemu_frame.rs` builds it, runs
 //! it, renders the same frames on the host and checks every band bit for bit.
@@ -60,6 +62,7 @@ use core::sync::atomic::{compiler_fence, Ordering::SeqCst};
 use arealight::raster::{Band, Rgb565};
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hio};
+use demo_scene::calibrate::{self, CalibrationBuffers};
 use demo_scene::{Stage, BAND_PIXELS, BAND_ROWS, HEIGHT, WIDTH};
 
 use counter::{cnt, fail, self_check, Line, Tim2};
@@ -75,6 +78,8 @@ struct Ram {
     pixels: [Rgb565; BAND_PIXELS],
     depth: [u16; BAND_PIXELS],
     sent: [Rgb565; BAND_PIXELS],
+    /// The unit-cost calibration's meshes (`demo_scene::calibrate`).
+    calibration: CalibrationBuffers<f32>,
 }
 
 /// A constant initializer: the storage is never built on the stack. (`MeshBuffers::new()`
@@ -85,6 +90,7 @@ static mut RAM: Ram = Ram {
     pixels: [Rgb565(0); BAND_PIXELS],
     depth: [0; BAND_PIXELS],
     sent: [Rgb565(0); BAND_PIXELS],
+    calibration: CalibrationBuffers::new(),
 };
 
 /// Semihosting stdout through a buffer (one host write per 1 KiB, not per line).
@@ -273,6 +279,19 @@ fn main() -> ! {
             mode,
             &mut line,
         );
+    }
+    // The unit costs of `host-sim budget --scene` (instructions per item).
+    let mut clock = cnt;
+    let result = calibrate::run(&mut ram.calibration, &mut band, &mut clock, &mut |s| {
+        let _ = write!(
+            line,
+            "COST {} {} {} {} {}",
+            s.item, s.count, s.setups, s.calls, s.ticks
+        );
+        line.send();
+    });
+    if let Err(e) = result {
+        fail(&mut line, format_args!("calibrate: {e:?}"));
     }
     let (end, start) = stack_bounds();
     let _ = write!(line, "STACK {} {}", stack_used(), start - end);

@@ -1,0 +1,416 @@
+//! What each kind of work costs on the chip that runs it: the unit costs `host-sim budget
+//! --scene` multiplies a scene's counted work by (docs/scene-budget.md).
+//!
+//! [`run`] measures, with the caller's clock (core cycles on the RP2040 under rp2040js,
+//! instructions on the Cortex-M4F under QEMU), synthetic work that is *not* the demo's frame,
+//! so that the demo's frame can check the predictions made from these costs:
+//!
+//! | item | what is timed | count |
+//! |---|---|---|
+//! | `diffuse:<kind>` | [`Illuminant::diffuse`] of one light at [`POINTS`] shading points | calls |
+//! | `phong8:<kind>`, `phong32:<kind>` | [`Illuminant::phong`] with m = 8 and 32 at the same points | calls |
+//! | `lit_matte`, `lit_specular` | [`Lit::shade`] with no light: the material's own work | calls |
+//! | `vertex_lit`, `vertex_unlit` | [`PreparedMesh::transform`] / `transform_unlit` of a 10 x 20 UV sphere | vertices |
+//! | `shade_vertex` | [`PreparedMesh::shade`] of that sphere with a constant-colour shader | shader calls |
+//! | `band_clear` | [`Band::clear`] of every band of the frame | bands |
+//! | `raster_big`, `raster_grid` | Gouraud [`PreparedMesh::draw`] of a square seen face on, as 2 and as 512 triangles, every band | pixels (and triangle setups) |
+//! | `raster_big_pp` | the 2-triangle square per pixel with a constant-colour shader | pixels (and shader calls) |
+//!
+//! The light kinds are those the firmware's features build (`polygon` (a quad), `sphere`,
+//! `cap`, `point`, `directional`, `ambient`); the shading points are [`POINTS`] points of a
+//! sphere of radius 0.6 at the origin, every direction (Fibonacci), seen from the demo's
+//! camera, so about half of them face away from each light (the early exits count as in a
+//! scene). Everything lies within the fixed-point range.
+
+use arealight::raster::{
+    mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit,
+    Material, Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shader,
+    Shading, Vertex,
+};
+use arealight::{
+    Ambient, CapLight, DirectionalLight, Illuminant, PhongLobe, PointLight, PolygonLight, Real,
+    Rgb, SphereLight, Vec3,
+};
+
+use super::{BACKGROUND, HEIGHT, WIDTH};
+
+/// Shading points per light call item.
+pub const POINTS: usize = 32;
+
+/// One measurement: `ticks` of the caller's clock for `count` units of `item` (and, for the
+/// raster items, the triangle setups and shader calls the draws made).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sample {
+    /// What was timed (see the module docs).
+    pub item: &'static str,
+    /// Units of work (calls, vertices, bands or pixels).
+    pub count: u32,
+    /// Triangle setups of a raster item (0 otherwise).
+    pub setups: u32,
+    /// Shader calls of a raster item (0 otherwise).
+    pub calls: u32,
+    /// Clock ticks.
+    pub ticks: u32,
+}
+
+const SPHERE_STACKS: u16 = 10;
+const SPHERE_SLICES: u16 = 20;
+const SPHERE_VERTICES: usize = (SPHERE_STACKS as usize + 1) * (SPHERE_SLICES as usize + 1);
+const SPHERE_TRIANGLES: usize = 2 * SPHERE_SLICES as usize * (SPHERE_STACKS as usize - 1);
+const GRID: u16 = 16;
+const GRID_VERTICES: usize = (GRID as usize + 1) * (GRID as usize + 1);
+const GRID_TRIANGLES: usize = 2 * GRID as usize * GRID as usize;
+
+/// The calibration's storage (no allocation; a `const fn`, for a `static`): about 30 KiB with
+/// `Fixed22`.
+pub struct CalibrationBuffers<T> {
+    sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
+    sphere_triangles: [[u16; 3]; SPHERE_TRIANGLES],
+    grid_vertices: [Vertex<T>; GRID_VERTICES],
+    grid_triangles: [[u16; 3]; GRID_TRIANGLES],
+    square_vertices: [Vertex<T>; 4],
+    square_triangles: [[u16; 3]; 2],
+    prepared: [PreparedVertex<T>; GRID_VERTICES],
+    table: EncodeTable,
+}
+
+impl<T: Real> CalibrationBuffers<T> {
+    const ZERO_VERTEX: Vertex<T> = Vertex::new(
+        Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+    );
+    /// Zeroed buffers ([`run`] fills them).
+    pub const fn new() -> Self {
+        CalibrationBuffers {
+            sphere_vertices: [Self::ZERO_VERTEX; SPHERE_VERTICES],
+            sphere_triangles: [[0; 3]; SPHERE_TRIANGLES],
+            grid_vertices: [Self::ZERO_VERTEX; GRID_VERTICES],
+            grid_triangles: [[0; 3]; GRID_TRIANGLES],
+            square_vertices: [Self::ZERO_VERTEX; 4],
+            square_triangles: [[0; 3]; 2],
+            prepared: [PreparedVertex::EMPTY; GRID_VERTICES],
+            table: EncodeTable::zeroed(),
+        }
+    }
+}
+
+impl<T: Real> Default for CalibrationBuffers<T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// A constant colour, whatever the point (the shader of an emissive object).
+struct Flat<T>(Rgb<T>);
+
+impl<T: Real> Shader<T> for Flat<T> {
+    fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+        self.0
+    }
+}
+
+/// No light at all (for the material's own cost): black, which the compiler cannot see
+/// through (so the material's products and the reflection are not folded away).
+struct Dark;
+
+impl<T: Real> Illuminant<T> for Dark {
+    fn diffuse(&self, _p: Vec3<T>, _n: Vec3<T>) -> Rgb<T> {
+        core::hint::black_box(Rgb::splat(T::ZERO))
+    }
+    fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: Vec3<T>) -> Rgb<T> {
+        core::hint::black_box(Rgb::splat(T::ZERO))
+    }
+}
+
+fn v3<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
+    Vec3::from_f64([x, y, z])
+}
+
+/// The shading points: `(p, n, v, r)` for [`POINTS`] directions.
+struct Points<T> {
+    p: [Vec3<T>; POINTS],
+    n: [Vec3<T>; POINTS],
+    v: [Vec3<T>; POINTS],
+    r: [Vec3<T>; POINTS],
+}
+
+fn points<T: Real>() -> Points<T> {
+    let eye = [0.0, 0.8, 3.3];
+    let zero = v3::<T>(0.0, 0.0, 0.0);
+    let mut out = Points {
+        p: [zero; POINTS],
+        n: [zero; POINTS],
+        v: [zero; POINTS],
+        r: [zero; POINTS],
+    };
+    let golden = core::f64::consts::PI * (3.0 - 2.236_067_977_499_79);
+    for i in 0..POINTS {
+        let y = 1.0 - (2.0 * i as f64 + 1.0) / POINTS as f64;
+        let ring = libm::sqrt(1.0 - y * y);
+        let a = golden * i as f64;
+        let n = [ring * libm::cos(a), y, ring * libm::sin(a)];
+        let p = n.map(|c| 0.6 * c);
+        let d = [eye[0] - p[0], eye[1] - p[1], eye[2] - p[2]];
+        let len = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        let v = d.map(|c| c / len);
+        let nv = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
+        let r = [0, 1, 2].map(|k| 2.0 * nv * n[k] - v[k]);
+        out.p[i] = Vec3::from_f64(p);
+        out.n[i] = Vec3::from_f64(n);
+        out.v[i] = Vec3::from_f64(v);
+        out.r[i] = Vec3::from_f64(r);
+    }
+    out
+}
+
+/// Times `f` once: the ticks between two clock reads around it.
+fn time(clock: &mut impl FnMut() -> u32, f: impl FnOnce()) -> u32 {
+    let t0 = clock();
+    f();
+    clock().wrapping_sub(t0)
+}
+
+/// One light's `diffuse` and `phong` (m = 8, 32) items.
+fn light_items<T: Real, L: Illuminant<T>>(
+    names: [&'static str; 3],
+    light: &L,
+    pts: &Points<T>,
+    lobes: &[PhongLobe<T>; 2],
+    clock: &mut impl FnMut() -> u32,
+    out: &mut impl FnMut(Sample),
+) {
+    let mut sink = T::ZERO;
+    let ticks = time(clock, || {
+        for i in 0..POINTS {
+            sink = sink + core::hint::black_box(light.diffuse(pts.p[i], pts.n[i])).r;
+        }
+    });
+    out(sample(names[0], POINTS as u32, ticks));
+    for (name, lobe) in names[1..].iter().zip(lobes) {
+        let ticks = time(clock, || {
+            for i in 0..POINTS {
+                sink = sink + core::hint::black_box(light.phong(lobe, pts.p[i], pts.r[i])).r;
+            }
+        });
+        out(sample(name, POINTS as u32, ticks));
+    }
+    core::hint::black_box(sink);
+}
+
+fn sample(item: &'static str, count: u32, ticks: u32) -> Sample {
+    Sample {
+        item,
+        count,
+        setups: 0,
+        calls: 0,
+        ticks,
+    }
+}
+
+/// Measures every item of the module docs with `clock`, handing each [`Sample`] to `out` as
+/// soon as it is measured. `band`: a [`WIDTH`]-wide band of the firmware's own height (its
+/// rows decide the bands per frame, as in the firmware).
+///
+/// # Errors
+/// None with the constants here; the constructors' errors otherwise.
+pub fn run<T: Real>(
+    buffers: &mut CalibrationBuffers<T>,
+    band: &mut Band<'_, Rgb565>,
+    clock: &mut impl FnMut() -> u32,
+    out: &mut impl FnMut(Sample),
+) -> Result<(), RasterError> {
+    let pts = points::<T>();
+    let lobes = [PhongLobe::new(8)?, PhongLobe::new(32)?];
+
+    // The lights, as the demo places its own (and a few kinds it does not use).
+    let panel = PolygonLight::<T, 4>::new(&[
+        v3(-1.0, 1.9, -1.0),
+        v3(1.0, 1.9, -1.0),
+        v3(1.0, 1.9, 0.4),
+        v3(-1.0, 1.9, 0.4),
+    ])?;
+    light_items(
+        ["diffuse:polygon", "phong8:polygon", "phong32:polygon"],
+        &panel,
+        &pts,
+        &lobes,
+        clock,
+        out,
+    );
+    let lamp = SphereLight::new(v3(0.07, 0.75, 1.3), T::from_f64(0.15))?;
+    light_items(
+        ["diffuse:sphere", "phong8:sphere", "phong32:sphere"],
+        &lamp,
+        &pts,
+        &lobes,
+        clock,
+        out,
+    );
+    let cap = CapLight::new(v3(0.3, 1.0, 0.2), T::from_f64(0.3))?;
+    light_items(
+        ["diffuse:cap", "phong8:cap", "phong32:cap"],
+        &cap,
+        &pts,
+        &lobes,
+        clock,
+        out,
+    );
+    let point = PointLight::inverse_square(v3(1.0, 1.5, 1.0))?;
+    light_items(
+        ["diffuse:point", "phong8:point", "phong32:point"],
+        &point,
+        &pts,
+        &lobes,
+        clock,
+        out,
+    );
+    let sun = DirectionalLight::new(v3(0.3, 1.0, 0.2))?;
+    light_items(
+        [
+            "diffuse:directional",
+            "phong8:directional",
+            "phong32:directional",
+        ],
+        &sun,
+        &pts,
+        &lobes,
+        clock,
+        out,
+    );
+    let ambient = Ambient(Rgb::from_f64([0.03, 0.035, 0.05]));
+    light_items(
+        ["diffuse:ambient", "phong8:ambient", "phong32:ambient"],
+        &ambient,
+        &pts,
+        &lobes,
+        clock,
+        out,
+    );
+
+    // The material's own work in `Lit::shade` (no light).
+    let matte = Material::matte(Rgb::from_f64([0.8, 0.3, 0.2]))?;
+    let glossy = Material::new(
+        Rgb::from_f64([0.8, 0.3, 0.2]),
+        Rgb::from_f64([0.4, 0.4, 0.4]),
+        20,
+    )?;
+    for (name, material) in [("lit_matte", &matte), ("lit_specular", &glossy)] {
+        let lit = Lit::new(&Dark, material);
+        let mut sink = T::ZERO;
+        let ticks = time(clock, || {
+            for i in 0..POINTS {
+                sink = sink + core::hint::black_box(lit.shade(pts.p[i], pts.n[i], pts.v[i])).r;
+            }
+        });
+        core::hint::black_box(sink);
+        out(sample(name, POINTS as u32, ticks));
+    }
+
+    // The frame's stages on synthetic meshes.
+    let CalibrationBuffers {
+        sphere_vertices,
+        sphere_triangles,
+        grid_vertices,
+        grid_triangles,
+        square_vertices,
+        square_triangles,
+        prepared,
+        table,
+    } = buffers;
+    table.fill::<T>(Encoding::Gamma2);
+    let camera = Camera::new(
+        v3(0.0, 0.8, 3.3),
+        v3(0.0, 0.05, 0.0),
+        v3(0.0, 1.0, 0.0),
+        Projection::Perspective {
+            fov_y: T::from_f64(0.8),
+        },
+        WIDTH,
+        HEIGHT,
+    )?
+    .with_depth_range(T::from_f64(1.0), T::from_f64(6.0))?;
+    let counts = mesh::uv_sphere(
+        T::from_f64(0.55),
+        SPHERE_STACKS,
+        SPHERE_SLICES,
+        sphere_vertices,
+        sphere_triangles,
+    )?;
+    let sphere = Mesh::new(
+        &sphere_vertices[..counts.vertices],
+        &sphere_triangles[..counts.triangles],
+    )?;
+    let mut opts = DrawOptions::new(Shading::Gouraud);
+    opts.cull = Cull::Back;
+    opts.encoding = Encoding::Gamma2;
+    let flat = Flat(Rgb::from_f64([0.5, 0.4, 0.3]));
+    let here = Affine::identity();
+    {
+        let mut sphere = PreparedMesh::new(sphere, &mut prepared[..])?;
+        let n = counts.vertices as u32;
+        let ticks = time(clock, || sphere.transform(&camera, &here));
+        out(sample("vertex_lit", n, ticks));
+        let ticks = time(clock, || sphere.transform_unlit(&camera, &here));
+        out(sample("vertex_unlit", n, ticks));
+        sphere.transform(&camera, &here);
+        let mut calls = 0;
+        let ticks = time(clock, || calls = sphere.shade(&camera, &flat, &opts));
+        out(sample("shade_vertex", calls, ticks));
+    }
+
+    // A 1.6 x 1.6 square facing the camera (about 130 pixels on a side), as 2 triangles and
+    // as a 16 x 16 grid of cells.
+    let face_on = Affine::rotation(v3(1.0, 0.0, 0.0), T::HALF * T::PI)?;
+    let side = T::from_f64(1.6);
+    let c = mesh::plane(side, side, 1, 1, square_vertices, square_triangles)?;
+    let square = Mesh::new(&square_vertices[..c.vertices], &square_triangles[..c.triangles])?;
+    let c = mesh::plane(side, side, GRID, GRID, grid_vertices, grid_triangles)?;
+    let grid = Mesh::new(&grid_vertices[..c.vertices], &grid_triangles[..c.triangles])?;
+
+    let rows = band.rows().max(1);
+    let mut clear_ticks = 0u32;
+    let mut bands = 0u32;
+    let per_pixel = {
+        let mut o = opts;
+        o.shading = Shading::PerPixel;
+        o
+    };
+    for (name, mesh, o) in [
+        ("raster_big", square, &opts),
+        ("raster_grid", grid, &opts),
+        ("raster_big_pp", square, &per_pixel),
+    ] {
+        let mut m = PreparedMesh::new(mesh, &mut prepared[..])?;
+        m.transform(&camera, &face_on);
+        m.shade(&camera, &flat, o);
+        let mut stats = DrawStats::default();
+        let mut ticks = 0u32;
+        let mut y0 = 0u16;
+        while y0 < HEIGHT {
+            band.move_to(y0);
+            let t = time(clock, || band.clear(BACKGROUND));
+            if name == "raster_big" {
+                clear_ticks = clear_ticks.wrapping_add(t);
+                bands += 1;
+            }
+            let t0 = clock();
+            let s = m.draw(&camera, band, &flat, o, table)?;
+            ticks = ticks.wrapping_add(clock().wrapping_sub(t0));
+            stats.rasterized += s.rasterized;
+            stats.pixels += s.pixels;
+            stats.shaded += s.shaded;
+            y0 = y0.saturating_add(rows);
+        }
+        if name == "raster_big" {
+            out(sample("band_clear", bands, clear_ticks));
+        }
+        out(Sample {
+            item: name,
+            count: stats.pixels,
+            setups: stats.rasterized,
+            calls: stats.shaded,
+            ticks,
+        });
+    }
+    Ok(())
+}
