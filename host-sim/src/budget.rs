@@ -3,9 +3,11 @@
 //! k = 1, 4, 16, 64 point samples).
 //!
 //! Writes `DIR/budget.csv` (`model,backend,host_ns,m4f_insns,m0_insns,code_bytes,max_abs_err,
-//! rms_err`, empty where a figure does not apply), `DIR/budget.md` (the same as a table, with
-//! what each column is) and `DIR/budget.png` (host time against max error, log-log, Pareto
-//! front highlighted).
+//! rms_err`, empty where a figure does not apply), `DIR/budget.md` (the same as tables, with
+//! what each column is), `DIR/budget-table.md` (the deterministic tables alone: instruction
+//! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-host.md`
+//! (the host times, one machine's) and `DIR/budget.png` (host time against max error, log-log,
+//! Pareto front highlighted).
 //!
 //! - host ns per call: each kernel of `boards/qemu-budget/src/cases.rs` (the firmware's), timed
 //!   over many repetitions per input on the 16 inputs of the QEMU harness; the median over the
@@ -63,6 +65,33 @@ pub struct BudgetArgs {
     /// Timing repetitions per input (fewer: faster and noisier).
     #[arg(long, default_value_t = 400)]
     pub reps: u32,
+    /// Budget a scene file instead (docs/scene-budget.md): frame time per stage and image
+    /// error of each option on --chip; writes DIR/<stem>-<chip>.md, .csv and .png.
+    #[arg(long, value_name = "FILE")]
+    pub scene: Option<PathBuf>,
+    /// The chip of --scene: rp2040, rp2040-dual, stm32f411 or cortex-m0.
+    #[arg(
+        long,
+        value_name = "NAME",
+        default_value = "rp2040",
+        requires = "scene"
+    )]
+    pub chip: Option<String>,
+    /// With --scene: the frame rate to meet.
+    #[arg(long, value_name = "F", requires = "scene")]
+    pub fps: Option<f64>,
+    /// With --scene: the largest mean error per pixel to accept, in 8-bit levels.
+    #[arg(long, value_name = "E", requires = "scene")]
+    pub max_error: Option<f64>,
+    /// With --scene: compare the predictions with the emulated frames of FRAMES.csv
+    /// (target/rp2040-emu/frames.csv or target/qemu-frame/frames.csv); exit non-zero if one
+    /// is more than 15 % off.
+    #[arg(long, value_name = "FRAMES.csv", requires = "scene")]
+    pub check: Option<PathBuf>,
+    /// Write host-sim/costs.csv (the unit costs of --scene) from the emulators' calibration
+    /// runs (target/rp2040-emu, target/qemu-frame) and the QEMU budget's counts.
+    #[arg(long, conflicts_with = "scene")]
+    pub calibrate: bool,
 }
 
 /// One row of the budget.
@@ -454,14 +483,16 @@ pub fn pareto(rows: &[Row]) -> Vec<usize> {
     pareto_by(rows, |r| Some(r.host_ns))
 }
 
-/// The markdown report: what the columns are, the table, and the cost at equal error.
+/// The deterministic tables (`budget-table.md`, which the README embeds and CI compares): per
+/// row the exact instruction counts, code bytes and errors, then the cost at equal error.
+/// Nothing measured by a clock: those figures are [`host_times`]'.
 pub fn markdown(rows: &[Row], counts_found: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "| model | backend | host ns | M4F insns | M0 insns | code bytes | max abs err | RMS err |"
+        "| model | backend | M4F insns | M0 insns | code bytes | max abs err | RMS err |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
     // The front by the exact M4F counts where the harness ran (host times vary run to run).
     let front = if counts_found {
         pareto_by(rows, |r| r.m4f.map(|n| n as f64))
@@ -472,10 +503,9 @@ pub fn markdown(rows: &[Row], counts_found: bool) -> String {
         let star = if front.contains(&i) { " *" } else { "" };
         let _ = writeln!(
             s,
-            "| `{}`{star} | {} | {:.0} | {} | {} | {} | {:.1e} | {:.1e} |",
+            "| `{}`{star} | {} | {} | {} | {} | {:.1e} | {:.1e} |",
             r.model,
             r.backend,
-            r.host_ns,
             opt(r.m4f),
             opt(r.m0),
             opt(r.code),
@@ -536,6 +566,19 @@ pub fn markdown(rows: &[Row], counts_found: bool) -> String {
                 .unwrap_or_else(|| "none of 1..64".into()),
             ok.map(|r| cost(r)).unwrap_or_default(),
         );
+    }
+    s
+}
+
+/// The host times (`budget-host.md`): one machine's, measured by a clock, so neither in the
+/// README's table nor compared by CI.
+pub fn host_times(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "Host time per call, ns (x86-64, this machine, median of 5 runs; varies from run to run \
+         and machine to machine: not checked).\n\n| model | backend | host ns |\n|---|---|---|\n",
+    );
+    for r in rows {
+        let _ = writeln!(s, "| `{}` | {} | {:.0} |", r.model, r.backend, r.host_ns);
     }
     s
 }
@@ -664,11 +707,8 @@ fn panel(
             line(pix, (bx, ay), (bx, by), &white, &wide);
         }
     }
-    for (i, r) in rows.iter().enumerate() {
-        let Some((cx, cy)) = at(r) else {
-            continue;
-        };
-        let rad = if r.kind == Kind::Sampled {
+    let radius = |r: &Row| {
+        if r.kind == Kind::Sampled {
             let k: f32 = r
                 .backend
                 .trim_start_matches("f32-pts")
@@ -677,16 +717,99 @@ fn panel(
             2.0 + k.log2() * 0.6
         } else {
             3.5
-        };
-        dot(pix, cx, cy, rad, colour(r.kind));
-        if front.contains(&i) {
-            if let Some(c) = PathBuilder::from_circle(cx, cy, rad + 3.0) {
-                pix.stroke_path(&c, &white, &thin, Transform::identity(), None);
-            }
-            let label = format!("{} {}", r.model, r.backend);
-            text(pix, &label, cx + 7.0, cy - 12.0, [255, 255, 255]);
         }
+    };
+    let mut dots: Vec<(f32, f32, f32)> = Vec::new();
+    for r in rows {
+        let Some((cx, cy)) = at(r) else {
+            continue;
+        };
+        let rad = radius(r);
+        dot(pix, cx, cy, rad, colour(r.kind));
+        dots.push((cx, cy, rad));
     }
+    // The front's labels: each at the first free place around its point (clear of the other
+    // labels and of every point, else of the labels only), on a dark box, with a leader line
+    // when it sits away from its point.
+    let mut placed: Vec<Rect> = Vec::new();
+    let bounds = (x0, y0, x1, y1);
+    for &i in &front {
+        let r = &rows[i];
+        let Some((cx, cy)) = at(r) else {
+            continue;
+        };
+        let rad = radius(r);
+        if let Some(c) = PathBuilder::from_circle(cx, cy, rad + 3.0) {
+            pix.stroke_path(&c, &white, &thin, Transform::identity(), None);
+        }
+        let label = format!("{} {}", r.model, r.backend);
+        let (lw, lh) = (label.len() as f32 * 6.0 + 4.0, 12.0);
+        let Some((bx, by)) = place_label((cx, cy), rad, (lw, lh), bounds, &placed, &dots) else {
+            continue;
+        };
+        let Some(rect) = Rect::from_xywh(bx, by, lw, lh) else {
+            continue;
+        };
+        let near = (bx - (cx + rad + 4.0)).abs() < 1.0 && (by + lh / 2.0 - cy).abs() < 8.0;
+        if !near {
+            let lead = paint([170, 170, 175]);
+            let tx = if bx > cx { bx } else { bx + lw };
+            line(pix, (cx, cy), (tx, by + lh / 2.0), &lead, &thin);
+        }
+        pix.fill_rect(rect, &paint([24, 24, 28]), Transform::identity(), None);
+        text(pix, &label, bx + 2.0, by + 1.0, [255, 255, 255]);
+        placed.push(rect);
+    }
+}
+
+/// `true` if the two rectangles overlap.
+fn overlaps(a: &Rect, b: &Rect) -> bool {
+    a.left() < b.right() && b.left() < a.right() && a.top() < b.bottom() && b.top() < a.bottom()
+}
+
+/// Where a `size` label for the point `p` (radius `rad`) goes: the top-left corner of the first
+/// candidate (right of the point, then left, then further up and down on either side) inside
+/// `bounds` that overlaps no `placed` label and no point of `dots`; failing that the first that
+/// overlaps no label; `None` when every candidate overlaps a label.
+fn place_label(
+    p: (f32, f32),
+    rad: f32,
+    size: (f32, f32),
+    bounds: (f32, f32, f32, f32),
+    placed: &[Rect],
+    dots: &[(f32, f32, f32)],
+) -> Option<(f32, f32)> {
+    let (cx, cy) = p;
+    let (w, h) = size;
+    let right = cx + rad + 4.0;
+    let left = cx - rad - 4.0 - w;
+    let mut candidates = Vec::new();
+    for dy in [0.0f32, -14.0, 14.0, -28.0, 28.0, -42.0, 42.0, -56.0, 56.0] {
+        candidates.push((right, cy - h / 2.0 + dy));
+        candidates.push((left, cy - h / 2.0 + dy));
+    }
+    let rect = |&(x, y): &(f32, f32)| Rect::from_xywh(x, y, w, h);
+    let inside = |r: &Rect| {
+        r.left() >= bounds.0
+            && r.top() >= bounds.1
+            && r.right() <= bounds.2
+            && r.bottom() <= bounds.3
+    };
+    let clear_of_labels = |r: &Rect| inside(r) && !placed.iter().any(|q| overlaps(r, q));
+    let clear_of_dots = |r: &Rect| {
+        !dots.iter().any(|&(x, y, d)| {
+            Rect::from_xywh(x - d, y - d, 2.0 * d, 2.0 * d).is_some_and(|q| overlaps(r, &q))
+        })
+    };
+    candidates
+        .iter()
+        .find(|c| rect(c).is_some_and(|r| clear_of_labels(&r) && clear_of_dots(&r)))
+        .or_else(|| {
+            candidates
+                .iter()
+                .find(|c| rect(c).is_some_and(|r| clear_of_labels(&r)))
+        })
+        .copied()
 }
 
 /// Draws the plot: max error against host time and, where the QEMU harness's counts are
@@ -800,13 +923,19 @@ pub fn run(args: &BudgetArgs) -> Result<Vec<PathBuf>, String> {
          against the exact f64 model they approximate), over random directions. Phong m = 16, \
          moments m = 4, line decay k = 2.\n\n",
     );
-    md.push_str(&markdown(&rows, counts_found));
+    let table = markdown(&rows, counts_found);
+    md.push_str(&table);
+    md.push('\n');
+    md.push_str(&host_times(&rows));
     let png = plot(&rows)?
         .encode_png()
         .map_err(|e| format!("encoding budget.png: {e}"))?;
     let paths = vec![
         write("budget.csv", csv(&rows).as_bytes())?,
         write("budget.md", md.as_bytes())?,
+        // The deterministic part alone, for the README's block (boards/readme-tables.mjs).
+        write("budget-table.md", table.as_bytes())?,
+        write("budget-host.md", host_times(&rows).as_bytes())?,
         write("budget.png", &png)?,
     ];
     let missed = missed_targets(&rows);
@@ -822,6 +951,12 @@ pub fn run(args: &BudgetArgs) -> Result<Vec<PathBuf>, String> {
 
 /// `host-sim budget`.
 pub fn main(args: &BudgetArgs) -> ExitCode {
+    if args.calibrate {
+        return crate::scene_budget::calibrate_main(&args.counts);
+    }
+    if let Some(scene) = &args.scene {
+        return crate::scene_budget::main(args, scene);
+    }
     match run(args) {
         Ok(paths) => {
             for p in paths {
@@ -925,6 +1060,12 @@ mod tests {
             counts: "/nonexistent/counts.csv".into(),
             samples: 256,
             reps: 1,
+            scene: None,
+            chip: None,
+            fps: None,
+            max_error: None,
+            check: None,
+            calibrate: false,
         };
         let rows = budget(&args).unwrap();
         for m in MODELS {

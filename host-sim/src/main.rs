@@ -17,6 +17,7 @@ mod eval;
 mod figure;
 mod plot;
 mod render;
+mod scene_budget;
 mod scene_file;
 mod scenes;
 

@@ -795,11 +795,14 @@ fn build_camera<T: Real>(cam: &CameraDef, pos: usize) -> Result<Camera<T>, Locat
     })
 }
 
+/// A built scene with what the budget needs of its file.
+type Built<T> = (Scene<T>, Vec<LightInfo>, Vec<ObjectInfo>);
+
 fn build<T: Real + 'static>(
     file: &File,
     src: &str,
     warnings: &mut Vec<Located>,
-) -> Result<(Scene<T>, Vec<LightInfo>, Vec<ObjectInfo>), Located> {
+) -> Result<Built<T>, Located> {
     let cam = file.camera.get_ref();
     let camera = build_camera(cam, file.camera.span().start)?;
     let mut lights = Vec::new();

@@ -23,9 +23,8 @@
 //! scene). Everything lies within the fixed-point range.
 
 use arealight::raster::{
-    mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit,
-    Material, Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shader,
-    Shading, Vertex,
+    mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
+    Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shader, Shading, Vertex,
 };
 use arealight::{
     Ambient, CapLight, DirectionalLight, Illuminant, PhongLobe, PointLight, PolygonLight, Real,
@@ -182,14 +181,14 @@ fn light_items<T: Real, L: Illuminant<T>>(
     let mut sink = T::ZERO;
     let ticks = time(clock, || {
         for i in 0..POINTS {
-            sink = sink + core::hint::black_box(light.diffuse(pts.p[i], pts.n[i])).r;
+            sink += core::hint::black_box(light.diffuse(pts.p[i], pts.n[i])).r;
         }
     });
     out(sample(names[0], POINTS as u32, ticks));
     for (name, lobe) in names[1..].iter().zip(lobes) {
         let ticks = time(clock, || {
             for i in 0..POINTS {
-                sink = sink + core::hint::black_box(light.phong(lobe, pts.p[i], pts.r[i])).r;
+                sink += core::hint::black_box(light.phong(lobe, pts.p[i], pts.r[i])).r;
             }
         });
         out(sample(name, POINTS as u32, ticks));
@@ -299,7 +298,7 @@ pub fn run<T: Real>(
         let mut sink = T::ZERO;
         let ticks = time(clock, || {
             for i in 0..POINTS {
-                sink = sink + core::hint::black_box(lit.shade(pts.p[i], pts.n[i], pts.v[i])).r;
+                sink += core::hint::black_box(lit.shade(pts.p[i], pts.n[i], pts.v[i])).r;
             }
         });
         core::hint::black_box(sink);
@@ -363,7 +362,10 @@ pub fn run<T: Real>(
     let face_on = Affine::rotation(v3(1.0, 0.0, 0.0), T::HALF * T::PI)?;
     let side = T::from_f64(1.6);
     let c = mesh::plane(side, side, 1, 1, square_vertices, square_triangles)?;
-    let square = Mesh::new(&square_vertices[..c.vertices], &square_triangles[..c.triangles])?;
+    let square = Mesh::new(
+        &square_vertices[..c.vertices],
+        &square_triangles[..c.triangles],
+    )?;
     let c = mesh::plane(side, side, GRID, GRID, grid_vertices, grid_triangles)?;
     let grid = Mesh::new(&grid_vertices[..c.vertices], &grid_triangles[..c.triangles])?;
 

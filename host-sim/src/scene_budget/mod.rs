@@ -1,0 +1,720 @@
+//! `host-sim budget --scene FILE --chip NAME`: a scene's frame time on a chip, per option,
+//! with each option's image error, before any firmware is written (docs/scene-budget.md).
+//!
+//! For each option (backend, and per object Gouraud or per pixel) the scene is rendered once
+//! on the host through the firmware's own frame path ([`work::render`]): the work of each
+//! stage is counted per object (vertices, shader calls, triangle setups, pixels, bands). The
+//! counts times the chip's unit costs ([`costs`], measured on the chip's emulator by
+//! `boards/demo-scene/src/calibrate.rs` on synthetic work) give the frame time stage by stage;
+//! the image against the f64 per-pixel render of the same scene gives the error (max and mean
+//! per pixel, in 8-bit levels). The options on the Pareto front (no other is both faster and
+//! more accurate) are marked, and the cheapest that meets `--fps` and `--max-error` is
+//! recommended. `--check FRAMES.csv` compares the prediction with an emulated frame.
+
+pub mod costs;
+pub mod work;
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use arealight::raster::Shading;
+use arealight::{Fast32, Fixed22, Real};
+use tiny_skia::{Paint, PathBuilder, Pixmap, Stroke, Transform};
+
+use crate::budget::BudgetArgs;
+use crate::figure::{self, Font};
+use crate::scene_file::{self, Parsed};
+use crate::scenes::Surface;
+use costs::{Chip, Costs, Finish, LightCost, Prediction};
+use work::Work;
+
+/// The tolerance of `--check`: a prediction within 15 % of the emulated frame.
+pub const CHECK_TOLERANCE: f64 = 0.15;
+
+/// One option of a scene on a chip.
+#[derive(Clone, Debug)]
+pub struct Row {
+    /// The backend (`fixed`, `f32`, `f32-fast`).
+    pub backend: &'static str,
+    /// What the shading is, in words.
+    pub shading: String,
+    /// The predicted frame, in the chip's unit.
+    pub predicted: Prediction,
+    /// Milliseconds at the chip's clock.
+    pub ms: f64,
+    /// Largest per-pixel error against the f64 per-pixel frame, 8-bit levels.
+    pub max_err: f64,
+    /// Mean per-pixel error, 8-bit levels.
+    pub mean_err: f64,
+    /// Some costs were derived from the QEMU budget's counts rather than calibrated.
+    pub derived: bool,
+    /// On the Pareto front (time against mean error).
+    pub pareto: bool,
+    /// The work counted.
+    pub work: Work,
+}
+
+/// Why an option has no row.
+#[derive(Clone, Debug)]
+pub struct Skipped {
+    /// The backend.
+    pub backend: &'static str,
+    /// Why.
+    pub why: String,
+}
+
+/// What a budget of a scene on a chip found.
+pub struct Budget {
+    /// The chip.
+    pub chip: &'static Chip,
+    /// The scene file's name.
+    pub scene: String,
+    /// The options, in the order tried.
+    pub rows: Vec<Row>,
+    /// Backends that could not render the scene, and why.
+    pub skipped: Vec<Skipped>,
+}
+
+/// The shading assignments tried: as written, all Gouraud, all per pixel, and each lit object
+/// alone per pixel. (Emissive objects are always Gouraud.) Deduplicated.
+fn assignments(written: &[Shading], lit: &[bool], names: &[String]) -> Vec<(String, Vec<Shading>)> {
+    let all = |s: Shading| -> Vec<Shading> {
+        lit.iter()
+            .map(|&l| if l { s } else { Shading::Gouraud })
+            .collect()
+    };
+    let mut out = vec![
+        ("as written".to_owned(), written.to_vec()),
+        ("all Gouraud".to_owned(), all(Shading::Gouraud)),
+        ("all per pixel".to_owned(), all(Shading::PerPixel)),
+    ];
+    if lit.iter().filter(|&&l| l).count() > 1 {
+        for (i, _) in lit.iter().enumerate().filter(|(_, &l)| l) {
+            let mut a = all(Shading::Gouraud);
+            a[i] = Shading::PerPixel;
+            out.push((format!("{} per pixel", names[i]), a));
+        }
+    }
+    let mut seen: Vec<Vec<Shading>> = Vec::new();
+    out.retain(|(_, a)| {
+        if seen.contains(a) {
+            false
+        } else {
+            seen.push(a.clone());
+            true
+        }
+    });
+    out
+}
+
+fn describe(a: &[Shading], lit: &[bool], names: &[String]) -> String {
+    let per: Vec<&str> = a
+        .iter()
+        .zip(lit)
+        .zip(names)
+        .filter(|((s, &l), _)| l && **s == Shading::PerPixel)
+        .map(|(_, n)| n.as_str())
+        .collect();
+    let lit_n = lit.iter().filter(|&&l| l).count();
+    match per.len() {
+        0 => "Gouraud".into(),
+        n if n == lit_n => "per pixel".into(),
+        _ => format!("per pixel: {}; Gouraud: the rest", per.join(", ")),
+    }
+}
+
+/// Renders and predicts every assignment in backend `T`.
+#[allow(clippy::too_many_arguments)]
+fn rows_in<T: Real + 'static>(
+    name: &str,
+    src: &str,
+    backend: &'static str,
+    chip: &'static Chip,
+    costs: &Costs,
+    reference: &[[u8; 3]],
+    plan: &[(String, Vec<Shading>)],
+    finishes: &[Finish],
+    lights: &[LightCost],
+    lit: &[bool],
+    names: &[String],
+) -> Result<Vec<Row>, String> {
+    let Parsed { scene, .. } = scene_file::parse_as::<T>(name, src)
+        .map_err(|e| format!("the scene does not build in {backend}: {e}"))?;
+    let mut rows = Vec::new();
+    for (label, a) in plan {
+        let (frame, work) = work::render(&scene, a, chip.band_rows)
+            .map_err(|e| format!("{backend}: the rasterizer refused the scene: {e}"))?;
+        let (max_err, mean_err) = work::image_error(&frame, reference);
+        costs.take_derived();
+        let predicted = costs::predict(chip, costs, backend, &work, finishes, lights)?;
+        let derived = costs.take_derived();
+        let shading = if label == "as written" {
+            format!("{} (as written)", describe(a, lit, names))
+        } else {
+            describe(a, lit, names)
+        };
+        rows.push(Row {
+            backend,
+            shading,
+            ms: predicted.total() / (chip.mhz * 1e3),
+            predicted,
+            max_err,
+            mean_err,
+            derived,
+            pareto: false,
+            work,
+        });
+    }
+    Ok(rows)
+}
+
+/// Budgets the scene file `path` on `chip`.
+///
+/// # Errors
+/// An unreadable or bad scene file, an unknown chip, a missing cost.
+pub fn budget(path: &Path, chip: &str) -> Result<Budget, String> {
+    let chip = costs::chip(chip)?;
+    let costs = Costs::parse(costs::COSTS_CSV, chip.costs)?;
+    let name = path.display().to_string();
+    let src = std::fs::read_to_string(path).map_err(|e| format!("cannot read {name}: {e}"))?;
+    let reference: Parsed<f64> = scene_file::parse_as::<f64>(&name, &src)?;
+    let lights: Vec<LightCost> = reference
+        .lights
+        .iter()
+        .map(|l| LightCost {
+            kind: l.kind.to_owned(),
+            vertices: l.vertices,
+        })
+        .collect();
+    let finishes: Vec<Finish> = reference
+        .scene
+        .objects
+        .iter()
+        .map(|o| match &o.surface {
+            Surface::Lit(m) => Finish::Lit {
+                specular: [m.specular.r, m.specular.g, m.specular.b]
+                    .iter()
+                    .any(|&c| c > 0.0),
+                m: m.lobe.exponent(),
+            },
+            _ => Finish::Emissive,
+        })
+        .collect();
+    let lit: Vec<bool> = finishes
+        .iter()
+        .map(|f| matches!(f, Finish::Lit { .. }))
+        .collect();
+    let names: Vec<String> = reference
+        .objects
+        .iter()
+        .map(|o| format!("{} (line {})", o.kind, o.line))
+        .collect();
+    let written: Vec<Shading> = reference.scene.objects.iter().map(|o| o.shading).collect();
+    let plan = assignments(&written, &lit, &names);
+    let all_per_pixel: Vec<Shading> = vec![Shading::PerPixel; lit.len()];
+    let (reference_frame, _) = work::render(&reference.scene, &all_per_pixel, chip.band_rows)
+        .map_err(|e| format!("f64: the rasterizer refused the scene: {e}"))?;
+
+    let mut rows = Vec::new();
+    let mut skipped = Vec::new();
+    for &backend in chip.backends {
+        let args = (
+            name.as_str(),
+            src.as_str(),
+            backend,
+            chip,
+            &costs,
+            reference_frame.as_slice(),
+            plan.as_slice(),
+            finishes.as_slice(),
+            lights.as_slice(),
+            lit.as_slice(),
+            names.as_slice(),
+        );
+        let got = match backend {
+            "fixed" => call::<Fixed22>(args),
+            "f32-fast" => call::<Fast32>(args),
+            _ => call::<f32>(args),
+        };
+        match got {
+            Ok(r) => rows.extend(r),
+            Err(why) => skipped.push(Skipped { backend, why }),
+        }
+    }
+    mark_pareto(&mut rows);
+    Ok(Budget {
+        chip,
+        scene: name,
+        rows,
+        skipped,
+    })
+}
+
+type RowsArgs<'a> = (
+    &'a str,
+    &'a str,
+    &'static str,
+    &'static Chip,
+    &'a Costs,
+    &'a [[u8; 3]],
+    &'a [(String, Vec<Shading>)],
+    &'a [Finish],
+    &'a [LightCost],
+    &'a [bool],
+    &'a [String],
+);
+
+fn call<T: Real + 'static>(a: RowsArgs<'_>) -> Result<Vec<Row>, String> {
+    rows_in::<T>(a.0, a.1, a.2, a.3, a.4, a.5, a.6, a.7, a.8, a.9, a.10)
+}
+
+/// Marks the rows no other row beats on both time and mean error.
+fn mark_pareto(rows: &mut [Row]) {
+    let n = rows.len();
+    for i in 0..n {
+        let (t, e) = (rows[i].ms, rows[i].mean_err);
+        rows[i].pareto = !(0..n).any(|j| {
+            j != i
+                && rows[j].ms <= t
+                && rows[j].mean_err <= e
+                && (rows[j].ms < t || rows[j].mean_err < e)
+        });
+    }
+}
+
+/// The cheapest row meeting both limits.
+pub fn recommend(rows: &[Row], fps: Option<f64>, max_error: Option<f64>) -> Option<&Row> {
+    rows.iter()
+        .filter(|r| fps.is_none_or(|f| r.ms <= 1000.0 / f))
+        .filter(|r| max_error.is_none_or(|e| r.mean_err <= e))
+        .min_by(|a, b| a.ms.total_cmp(&b.ms))
+}
+
+fn mega(x: f64) -> String {
+    format!("{:.2} M", x / 1e6)
+}
+
+/// The table (markdown) and a recommendation.
+pub fn markdown(b: &Budget, fps: Option<f64>, max_error: Option<f64>) -> String {
+    let c = b.chip;
+    let mut s = String::new();
+    let _ = writeln!(s, "Scene `{}` on `{}`: {}.", b.scene, c.name, c.what);
+    let _ = writeln!(
+        s,
+        "Predicted {} per frame by stage (counted work times the unit costs of `host-sim/costs.csv`), ms at {} MHz; image error against the f64 per-pixel frame, per pixel, in 8-bit levels (largest channel). * = on the Pareto front (time against mean error); d = some costs derived from the QEMU budget's counts, not calibrated on this chip.\n",
+        c.unit, c.mhz
+    );
+    let _ = writeln!(s, "| backend | shading | transform | shade | raster | flush | frame | ms | fps | max error | mean error | |");
+    let _ = writeln!(
+        s,
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+    );
+    for r in &b.rows {
+        let p = &r.predicted;
+        let _ = writeln!(
+            s,
+            "| {}{} | {} | {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.0} | {:.2} | {} |",
+            r.backend,
+            if r.derived { " (d)" } else { "" },
+            r.shading,
+            mega(p.transform),
+            mega(p.shade),
+            mega(p.raster),
+            mega(p.flush),
+            mega(p.total()),
+            r.ms,
+            1000.0 / r.ms.max(1e-9),
+            r.max_err,
+            r.mean_err,
+            if r.pareto { "*" } else { "" }
+        );
+    }
+    for k in &b.skipped {
+        let _ = writeln!(s, "\n{}: not possible: {}", k.backend, k.why);
+    }
+    let _ = writeln!(s);
+    let want = match (fps, max_error) {
+        (None, None) => "the fastest option".to_owned(),
+        (Some(f), None) => format!("{f} fps"),
+        (None, Some(e)) => format!("a mean error of at most {e} levels"),
+        (Some(f), Some(e)) => format!("{f} fps with a mean error of at most {e} levels"),
+    };
+    match recommend(&b.rows, fps, max_error) {
+        Some(r) => {
+            let _ = writeln!(
+                s,
+                "Recommended for {want}: {} with {}: {:.1} ms ({:.1} fps), mean error {:.2}, max {:.0} levels.",
+                r.backend, r.shading, r.ms, 1000.0 / r.ms, r.mean_err, r.max_err
+            );
+        }
+        None => {
+            let fastest = b.rows.iter().min_by(|a, b| a.ms.total_cmp(&b.ms));
+            let _ = write!(s, "Nothing meets {want}.");
+            if let Some(r) = fastest {
+                let _ = write!(
+                    s,
+                    " The fastest option, {} with {}, takes {:.1} ms ({:.1} fps)",
+                    r.backend,
+                    r.shading,
+                    r.ms,
+                    1000.0 / r.ms
+                );
+                if let Some(f) = fps {
+                    let _ = write!(
+                        s,
+                        ": {:.1} times the {:.1} ms of {f} fps",
+                        r.ms / (1000.0 / f),
+                        1000.0 / f
+                    );
+                }
+                let _ = write!(s, ", mean error {:.2} levels", r.mean_err);
+                if let Some(e) = max_error {
+                    let best = b
+                        .rows
+                        .iter()
+                        .map(|r| r.mean_err)
+                        .fold(f64::INFINITY, f64::min);
+                    if best > e {
+                        let _ = write!(s, "; the most accurate option's mean error is {best:.2} levels, above {e}");
+                    }
+                }
+                let _ = writeln!(s, ".");
+            }
+        }
+    }
+    s
+}
+
+/// The rows as CSV.
+pub fn csv(b: &Budget) -> String {
+    let mut s = String::from("chip,backend,derived,shading,transform,shade,raster,flush,frame,unit,ms,max_err,mean_err,pareto,vertices,vertex_calls,pixel_calls,pixels,triangle_setups,bands\n");
+    for r in &b.rows {
+        let p = &r.predicted;
+        let w = &r.work;
+        let _ = writeln!(
+            s,
+            "{},{},{},\"{}\",{:.0},{:.0},{:.0},{:.0},{:.0},{},{:.3},{},{:.4},{},{},{},{},{},{},{}",
+            b.chip.name,
+            r.backend,
+            r.derived,
+            r.shading,
+            p.transform,
+            p.shade,
+            p.raster,
+            p.flush,
+            p.total(),
+            b.chip.unit,
+            r.ms,
+            r.max_err,
+            r.mean_err,
+            r.pareto,
+            w.total(|o| o.vertices_lit + o.vertices_unlit),
+            w.total(|o| o.vertex_calls),
+            w.total(|o| o.pixel_calls),
+            w.total(|o| o.pixels),
+            w.total(|o| o.setups),
+            w.bands
+        );
+    }
+    s
+}
+
+/// Frame time (x, ms) against mean error (y), one dot per option, the Pareto front joined.
+pub fn plot(b: &Budget) -> Result<Pixmap, String> {
+    let (w, h) = (760u32, 460u32);
+    let mut pix = Pixmap::new(w, h).ok_or("plot size")?;
+    pix.fill(tiny_skia::Color::from_rgba8(255, 255, 255, 255));
+    let (x0, y0, pw, ph) = (70.0f32, 40.0f32, 640.0f32, 340.0f32);
+    let max_ms = b.rows.iter().map(|r| r.ms).fold(1.0, f64::max) * 1.1;
+    let max_e = b.rows.iter().map(|r| r.mean_err).fold(0.1, f64::max) * 1.15;
+    let px = |ms: f64| x0 + (ms / max_ms) as f32 * pw;
+    let py = |e: f64| y0 + ph - (e / max_e) as f32 * ph;
+    let black = [0, 0, 0];
+    let mut paint = Paint::default();
+    paint.set_color_rgba8(0, 0, 0, 255);
+    paint.anti_alias = true;
+    let stroke = Stroke {
+        width: 1.0,
+        ..Stroke::default()
+    };
+    let mut axes = PathBuilder::new();
+    axes.move_to(x0, y0);
+    axes.line_to(x0, y0 + ph);
+    axes.line_to(x0 + pw, y0 + ph);
+    if let Some(p) = axes.finish() {
+        pix.stroke_path(&p, &paint, &stroke, Transform::identity(), None);
+    }
+    let title = format!(
+        "{} on {}: frame time against image error",
+        b.scene, b.chip.name
+    );
+    figure::text(&mut pix, &title, x0 as i32, 10, black, Font::Big);
+    for k in 0..=4 {
+        let ms = max_ms * f64::from(k) / 4.0;
+        figure::text(
+            &mut pix,
+            &format!("{ms:.0}"),
+            px(ms) as i32 - 10,
+            (y0 + ph) as i32 + 6,
+            black,
+            Font::Small,
+        );
+        let e = max_e * f64::from(k) / 4.0;
+        figure::text(
+            &mut pix,
+            &format!("{e:.2}"),
+            30,
+            py(e) as i32 - 5,
+            black,
+            Font::Small,
+        );
+    }
+    figure::text(
+        &mut pix,
+        &format!("predicted ms per frame at {} MHz", b.chip.mhz),
+        (x0 + pw / 2.0) as i32 - 110,
+        (y0 + ph) as i32 + 22,
+        black,
+        Font::Small,
+    );
+    figure::text(
+        &mut pix,
+        "mean error, 8-bit levels",
+        4,
+        24,
+        black,
+        Font::Small,
+    );
+    let mut front: Vec<&Row> = b.rows.iter().filter(|r| r.pareto).collect();
+    front.sort_by(|a, b| a.ms.total_cmp(&b.ms));
+    let mut line = PathBuilder::new();
+    for (i, r) in front.iter().enumerate() {
+        if i == 0 {
+            line.move_to(px(r.ms), py(r.mean_err));
+        } else {
+            line.line_to(px(r.ms), py(r.mean_err));
+        }
+    }
+    paint.set_color_rgba8(180, 180, 180, 255);
+    if let Some(p) = line.finish() {
+        pix.stroke_path(&p, &paint, &stroke, Transform::identity(), None);
+    }
+    let colour = |backend: &str| match backend {
+        "fixed" => (200u8, 60u8, 40u8),
+        "f32" => (40, 90, 200),
+        _ => (40, 150, 80),
+    };
+    for (i, r) in b.rows.iter().enumerate() {
+        let (cr, cg, cb) = colour(r.backend);
+        paint.set_color_rgba8(cr, cg, cb, 255);
+        if let Some(c) =
+            PathBuilder::from_circle(px(r.ms), py(r.mean_err), if r.pareto { 5.0 } else { 3.5 })
+        {
+            pix.fill_path(
+                &c,
+                &paint,
+                tiny_skia::FillRule::Winding,
+                Transform::identity(),
+                None,
+            );
+        }
+        // Labels by index (the legend below says which is which), staggered against overlap.
+        let dy = if i % 2 == 0 { -14 } else { 6 };
+        figure::text(
+            &mut pix,
+            &format!("{}", i + 1),
+            px(r.ms) as i32 + 6,
+            py(r.mean_err) as i32 + dy,
+            [cr, cg, cb],
+            Font::Small,
+        );
+    }
+    let mut y = (y0 + ph) as i32 + 40;
+    let mut x = 10;
+    for (i, r) in b.rows.iter().enumerate() {
+        let (cr, cg, cb) = colour(r.backend);
+        let label = format!("{} {} {}", i + 1, r.backend, r.shading);
+        let width = figure::text_width(&label, Font::Small) + 16;
+        if x + width > w as i32 {
+            x = 10;
+            y += 12;
+        }
+        figure::text(&mut pix, &label, x, y, [cr, cg, cb], Font::Small);
+        x += width;
+    }
+    Ok(pix)
+}
+
+/// The emulated frames `--check` compares with: (label, assignment in words, measured units).
+fn measured(path: &Path, chip: &Chip) -> Result<Vec<(String, String, f64)>, String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let col = |n: &str| header.iter().position(|h| *h == n);
+    let mut out = Vec::new();
+    let stages = ["setup", "transform", "shade", "raster", "flush", "wait"];
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        let get = |n: &str| col(n).and_then(|i| f.get(i)).copied();
+        if get("frame") != Some("0") {
+            continue;
+        }
+        // The firmware's own stage timing of frame 0 (the whole render_frame).
+        let sum: f64 = stages
+            .iter()
+            .filter_map(|s| get(s).and_then(|x| x.parse::<f64>().ok()))
+            .sum();
+        if let Some(fw) = get("firmware") {
+            let want = if chip.cores > 1 {
+                "lit_scene_dual_core"
+            } else {
+                "lit_scene"
+            };
+            if fw == want {
+                out.push((format!("{fw} frame 0"), "as written".to_owned(), sum));
+            }
+        } else if let Some(mode) = get("mode") {
+            let plan = match mode {
+                "gouraud" => "all Gouraud".to_owned(),
+                "per_pixel" => "all per pixel".to_owned(),
+                m => match m.strip_suffix("_per_pixel") {
+                    Some(kind) => format!("{kind} per pixel"),
+                    None => continue,
+                },
+            };
+            let total = get("total").and_then(|x| x.parse().ok()).unwrap_or(sum);
+            out.push((format!("qemu-frame {mode} frame 0"), plan, total));
+        }
+    }
+    if out.is_empty() {
+        return Err(format!("{}: no frame 0 for {}", path.display(), chip.name));
+    }
+    Ok(out)
+}
+
+/// `--check`: each measured frame against the prediction of the same option in the chip's
+/// first backend. Returns the table and whether every one is within [`CHECK_TOLERANCE`].
+pub fn check(b: &Budget, path: &Path) -> Result<(String, bool), String> {
+    let backend = b.chip.backends[0];
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "| emulated frame | option | predicted | measured | prediction / measured |"
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---:|");
+    let mut ok = true;
+    for (label, plan, units) in measured(path, b.chip)? {
+        let row = b.rows.iter().filter(|r| r.backend == backend).find(|r| {
+            if plan == "as written" {
+                r.shading.ends_with("(as written)")
+            } else if plan == "all Gouraud" {
+                r.shading.starts_with("Gouraud")
+            } else if plan == "all per pixel" {
+                r.shading.starts_with("per pixel") && !r.shading.contains(':')
+            } else {
+                let kind = plan.trim_end_matches(" per pixel");
+                r.shading.starts_with(&format!("per pixel: {kind} ")) && !r.shading.contains(", ")
+            }
+        });
+        let Some(r) = row else {
+            return Err(format!("{label}: no option \"{plan}\" in {backend}"));
+        };
+        let ratio = r.predicted.total() / units;
+        let within = (ratio - 1.0).abs() <= CHECK_TOLERANCE;
+        ok &= within;
+        let _ = writeln!(
+            s,
+            "| {label} | {backend}, {} | {} | {} | {:.3}{} |",
+            r.shading,
+            mega(r.predicted.total()),
+            mega(units),
+            ratio,
+            if within { "" } else { " (beyond 15 %)" }
+        );
+    }
+    Ok((s, ok))
+}
+
+fn stem(path: &Path) -> String {
+    path.file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// `host-sim budget --scene`: prints the table, writes DIR/<stem>-<chip>.md, .csv and .png;
+/// with `--check`, compares and fails beyond the tolerance.
+pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
+    match run(args, scene) {
+        Ok((paths, ok)) => {
+            for p in paths {
+                println!("{}", p.display());
+            }
+            if ok {
+                ExitCode::SUCCESS
+            } else {
+                eprintln!("host-sim budget: a prediction is beyond 15 % of the emulated frame");
+                ExitCode::FAILURE
+            }
+        }
+        Err(e) => {
+            eprintln!("host-sim budget: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(args: &BudgetArgs, scene: &Path) -> Result<(Vec<PathBuf>, bool), String> {
+    let chip = args.chip.as_deref().unwrap_or("rp2040");
+    let b = budget(scene, chip)?;
+    let mut md = markdown(&b, args.fps, args.max_error);
+    let mut ok = true;
+    if let Some(frames) = &args.check {
+        let (table, fine) = check(&b, frames)?;
+        let _ = write!(
+            md,
+            "\nAgainst the emulated frames of `{}`:\n\n{table}",
+            frames.display()
+        );
+        ok = fine;
+    }
+    print!("{md}");
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let base = format!("{}-{}", stem(scene), b.chip.name);
+    let md_path = args.out.join(format!("{base}.md"));
+    std::fs::write(&md_path, &md).map_err(|e| format!("{}: {e}", md_path.display()))?;
+    let csv_path = args.out.join(format!("{base}.csv"));
+    std::fs::write(&csv_path, csv(&b)).map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    let png = figure::save(&plot(&b)?, &args.out, &format!("{base}.png"))?;
+    Ok((vec![md_path, csv_path, png], ok))
+}
+
+/// `host-sim budget --calibrate`: writes host-sim/costs.csv from the emulators' measurements.
+pub fn calibrate_main(counts: &Path) -> ExitCode {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let made = costs::calibrate(
+        &root.join("target/rp2040-emu"),
+        &root.join("target/qemu-frame"),
+        counts,
+    );
+    match made {
+        Ok(csv) => {
+            let path = root.join("host-sim/costs.csv");
+            match std::fs::write(&path, csv) {
+                Ok(()) => {
+                    println!("{}", path.display());
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("host-sim budget --calibrate: {}: {e}", path.display());
+                    ExitCode::FAILURE
+                }
+            }
+        }
+        Err(e) => {
+            eprintln!("host-sim budget --calibrate: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
