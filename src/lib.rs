@@ -1,9 +1,12 @@
 //! # arealight
 //!
 //! Analytic area-light shading for microcontrollers and software rasterizers: the closed forms
-//! of Snyder's "Area Light Sources for Real-Time Graphics" (MSR-TR-96-11) and the SH9
-//! irradiance of Ramamoorthi and Hanrahan, written once over a scalar trait ([`Real`]) and
-//! instantiated for `f64` (the reference), `f32` and [`Fast32`] (f32 with cheap `sqrt`/`atan2`).
+//! of Snyder's "Area Light Sources for Real-Time Graphics" (MSR-TR-96-11), the SH9
+//! irradiance of Ramamoorthi and Hanrahan, Barzel's uberlight shaping, Picott's linear lights
+//! and Arvo's irradiance-tensor moments, written once over a scalar trait ([`Real`]) and
+//! instantiated for `f64` (the reference), `f32` (via `libm`), [`Fast32`] (f32 with cheap
+//! `sqrt`/`atan2`) and, for chips without an FPU, the fixed-point `Fixed22` (I10F22, feature
+//! `fixed`; see `real::Fixed22`).
 //!
 //! `#![no_std]`, no allocation, no panics, no `unsafe` but the audited hardware square root of
 //! FPU targets ([`real::hw`]): constructors validate and return
@@ -34,16 +37,24 @@
 //! | `superellipse_shape` | [`Superellipse::shape`] (a factor: see [`Uberlight`]) | June eq. 20.34-20.42 (Barzel) |
 //! | `distance_falloff` | [`DistanceFalloff::falloff`] (a factor: see [`Uberlight`]) | June eq. 20.46, 20.47 and listing (Barzel) |
 //!
+//! Each model's documentation states its measured error against the reference (f64 against
+//! the quadrature; f32, `Fast32` and `Fixed22` against f64), generated from the test suite's
+//! measurements like the tables of `docs/accuracy.md` in the repository.
+//!
 //! ```
 //! use arealight::{CapLight, PhongLobe, Vec3};
-//! // The sun: a cap of half-angle 0.27 degrees, straight up.
-//! let sun = CapLight::<f32>::new(Vec3::new(0.0, 0.0, 1.0), 0.0047)?;
-//! let n = Vec3::new(0.0, 0.6, 0.8);
-//! let e = sun.lambert(n); // normalized irradiance: cos(w) sin^2(sigma) when fully visible
-//! assert!((e - 0.8 * 0.0047f32.sin().powi(2)).abs() < 1e-9);
-//! let lobe = PhongLobe::new(32)?;
-//! let _spec = sun.phong(&lobe, n);
-//! # Ok::<(), arealight::Error>(())
+//!
+//! fn main() -> Result<(), arealight::Error> {
+//!     // The sun: a cap of half-angle 0.27 degrees, straight up.
+//!     let sun = CapLight::<f32>::new(Vec3::new(0.0, 0.0, 1.0), 0.0047)?;
+//!     let n = Vec3::new(0.0, 0.6, 0.8);
+//!     let e = sun.lambert(n); // normalized irradiance: cos(w) sin^2(sigma) when fully visible
+//!     assert!((e - 0.8 * 0.0047f32.sin().powi(2)).abs() < 1e-9);
+//!     let lobe = PhongLobe::new(32)?;
+//!     let specular = sun.phong(&lobe, n);
+//!     println!("diffuse {e:e}, specular {specular:e}");
+//!     Ok(())
+//! }
 //! ```
 #![no_std]
 // The only `unsafe` is the audited hardware square root, `real::hw` (allowed there alone).
