@@ -2,19 +2,24 @@
 //! (`Fast32`) and fixed point (`Fixed22`), side by side, with heat maps of each one's
 //! difference from f64 (log scale, colour bar) and the largest difference printed.
 //!
-//! Frames are rendered into a linear floating-point pixel format (no transfer function, one
-//! value per channel in [0, 1]), so the maps show the shading error itself, not 8-bit
-//! rounding. A pixel covered in one frame and not in the other (vertex snapping differs by a
+//! Errors are measured before the display's clamp: every backend renders the frame into
+//! linear floating-point values (no transfer function) with the figure's exposure divided by a
+//! power of two `2^j` large enough that nothing reaches 1 (found from the f64 frame), and the
+//! values are multiplied back by `2^j` (exact in the floats; in `Fixed22` the scaled product
+//! rounds to 2^-22, 2^(j-22) after scaling back, far below its shading error). So the maps show
+//! the shading error itself at display scale, highlights included, not 8-bit rounding nor a
+//! clamp. A pixel covered in one frame and not in the other (vertex snapping differs by a
 //! sub-pixel between backends at a few silhouette pixels) is counted separately, not compared.
 
 use std::path::{Path, PathBuf};
 
-use arealight::raster::{Encoding, PixelFormat, RasterError};
-use arealight::{Fast32, Fixed22, Real};
+use arealight::raster::{encode_pixel, Encoding, RasterError, Rgb888};
+use arealight::{Fast32, Fixed22, Real, Rgb};
 use tiny_skia::{Color, Pixmap};
 
-use crate::figure::{self, blit, srgb8, text, Font, BG};
-use crate::scenes::{self, SnyderLight};
+use crate::figure::{self, blit, text, Font, BG};
+pub use crate::scenes::LinearPx;
+use crate::scenes::{self, SnyderLight, View};
 
 /// The sheets `render` writes: file stem and scene.
 pub const SHEETS: [(&str, SnyderLight); 2] = [
@@ -22,38 +27,38 @@ pub const SHEETS: [(&str, SnyderLight); 2] = [
     ("compare_sphere", SnyderLight::Sphere),
 ];
 
-/// A linear pixel: the three encoded (here: linear) channels as f64, and whether anything
-/// was drawn.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct LinearPx {
-    /// Channels in [0, 1].
-    pub rgb: [f64; 3],
-    /// `false` for the background.
-    pub covered: bool,
-}
-
-impl PixelFormat for LinearPx {
-    fn from_unit<T: Real>(r: T, g: T, b: T) -> Self {
-        LinearPx {
-            rgb: [r.to_f64(), g.to_f64(), b.to_f64()],
-            covered: true,
-        }
-    }
-    fn to_rgb8(self) -> [u8; 3] {
-        self.rgb.map(|x| srgb8(x as f32))
-    }
-}
-
 const W: u16 = 220;
 const H: u16 = 180;
-/// Exposure relative to the figure's (keeps most of the frame below 1, where nothing clamps).
-const EXPOSURE_SCALE: f64 = 0.6;
 
-fn frame<T: Real + 'static>(kind: SnyderLight) -> Result<Vec<LinearPx>, RasterError> {
-    let mut scene = scenes::snyder_scene::<T>(kind, W, H)?;
-    scene.encoding = Encoding::Linear;
-    scene.exposure *= T::from_f64(EXPOSURE_SCALE);
-    scenes::render(&scene, scenes::BAND_ROWS, LinearPx::default())
+/// The f64 frame's largest channel value at the figure's exposure (before any clamp), from a
+/// render at 1/128 of it (the fixed-point rasterizer's largest colour).
+fn peak(kind: SnyderLight) -> Result<f64, RasterError> {
+    let scene = scenes::snyder_scene::<f64>(kind, W, H)?;
+    let view = View {
+        camera: &scene.camera,
+        exposure: scene.exposure / 128.0,
+        encoding: Encoding::Linear,
+    };
+    let px = scenes::render_view(&scene, &view, scenes::BAND_ROWS, LinearPx::default())?;
+    Ok(px.iter().flat_map(|p| p.rgb).fold(0.0, f64::max) * 128.0)
+}
+
+/// The frame in `T` at the figure's exposure, linear and unclamped: rendered at the exposure
+/// divided by `2^j` and multiplied back.
+fn frame<T: Real + 'static>(kind: SnyderLight, j: i32) -> Result<Vec<LinearPx>, RasterError> {
+    let scene = scenes::snyder_scene::<T>(kind, W, H)?;
+    let down = T::from_f64(2f64.powi(-j));
+    let view = View {
+        camera: &scene.camera,
+        exposure: scene.exposure * down,
+        encoding: Encoding::Linear,
+    };
+    let mut px = scenes::render_view(&scene, &view, scenes::BAND_ROWS, LinearPx::default())?;
+    let up = 2f64.powi(j);
+    for p in &mut px {
+        p.rgb = p.rgb.map(|x| x * up);
+    }
+    Ok(px)
 }
 
 /// Which object each pixel shows (0: background): the scene with every surface replaced by a
@@ -139,7 +144,11 @@ pub fn error_map(
 /// A message for a scene the library refuses or a file that cannot be written.
 pub fn sheet(kind: SnyderLight, out: &Path, stem: &str) -> Result<PathBuf, String> {
     let err = |e: RasterError| format!("{stem}: scene refused: {e}");
-    let f64_frame = frame::<f64>(kind).map_err(err)?;
+    let peak = peak(kind).map_err(err)?;
+    // The smallest j with the peak at most 0.9 2^j (room for the backends' differences).
+    let j = (peak / 0.9).log2().ceil().max(0.0) as i32;
+    let display = scenes::snyder_scene::<f64>(kind, W, H).map_err(err)?;
+    let f64_frame = frame::<f64>(kind, j).map_err(err)?;
     let f64_ids = id_frame::<f64>(kind).map_err(err)?;
     type Column = (
         &'static str,
@@ -147,28 +156,28 @@ pub fn sheet(kind: SnyderLight, out: &Path, stem: &str) -> Result<PathBuf, Strin
         Option<Vec<u16>>,
     );
     let columns: [Column; 3] = [
-        ("f32", frame::<f32>(kind), id_frame::<f32>(kind).ok()),
+        ("f32", frame::<f32>(kind, j), id_frame::<f32>(kind).ok()),
         (
             "f32-fast (Fast32)",
-            frame::<Fast32>(kind),
+            frame::<Fast32>(kind, j),
             id_frame::<Fast32>(kind).ok(),
         ),
         (
             "fixed (Fixed22, I10F22)",
-            frame::<Fixed22>(kind),
+            frame::<Fixed22>(kind, j),
             id_frame::<Fixed22>(kind).ok(),
         ),
     ];
     let (w, h) = (W as u32, H as u32);
     let bar_w = 80;
     let sheet_w = 10 + 4 * (w + 10) + bar_w;
-    let sheet_h = 34 + 2 * (h + 40) + 10;
+    let sheet_h = 34 + 2 * (h + 40) + 24;
     let mut pix = Pixmap::new(sheet_w, sheet_h).ok_or("cannot allocate the sheet")?;
     pix.fill(Color::from_rgba8(BG[0], BG[1], BG[2], 255));
     text(
         &mut pix,
         &format!(
-            "Backends compared: Snyder fig. 7 {} (linear values, exposure x{EXPOSURE_SCALE})",
+            "Backends compared: Snyder fig. 7 {} (as the figure shows it)",
             kind.title()
         ),
         10,
@@ -176,7 +185,20 @@ pub fn sheet(kind: SnyderLight, out: &Path, stem: &str) -> Result<PathBuf, Strin
         [235, 235, 235],
         Font::Big,
     );
-    let to_rgb = |f: &[LinearPx]| -> Vec<[u8; 3]> { f.iter().map(|p| p.to_rgb8()).collect() };
+    // The frames as the figure shows them: its encoding (tone curve, sRGB) on the unclamped
+    // values, the background where nothing is drawn.
+    let to_rgb = |f: &[LinearPx]| -> Vec<[u8; 3]> {
+        f.iter()
+            .map(|p| {
+                if p.covered {
+                    let c = Rgb::new(p.rgb[0], p.rgb[1], p.rgb[2]);
+                    encode_pixel::<f64, Rgb888>(c, 1.0, display.encoding).0
+                } else {
+                    display.background
+                }
+            })
+            .collect()
+    };
     let (y_top, y_bot) = (34, 34 + h + 40);
     blit(&mut pix, &to_rgb(&f64_frame), w, h, 10, y_top);
     text(
@@ -189,9 +211,17 @@ pub fn sheet(kind: SnyderLight, out: &Path, stem: &str) -> Result<PathBuf, Strin
     );
     text(
         &mut pix,
-        "error maps: max |channel - f64|",
+        "error maps: max |channel - f64|,",
         10,
         (y_bot + h / 2) as i32,
+        [160, 160, 170],
+        Font::Small,
+    );
+    text(
+        &mut pix,
+        "before the clamp",
+        10,
+        (y_bot + h / 2 + 12) as i32,
         [160, 160, 170],
         Font::Small,
     );
@@ -272,6 +302,17 @@ pub fn sheet(kind: SnyderLight, out: &Path, stem: &str) -> Result<PathBuf, Strin
             Font::Small,
         );
     }
+    text(
+        &mut pix,
+        &format!(
+            "errors on linear values x the figure's exposure, before the display's clamp or tone \
+             curve (peak {peak:.2} of display white; rendered at 2^-{j} of the exposure, scaled back)"
+        ),
+        10,
+        (sheet_h - 14) as i32,
+        [150, 150, 160],
+        Font::Small,
+    );
     figure::save(&pix, out, &format!("{stem}.png"))
 }
 
@@ -302,5 +343,30 @@ mod tests {
         assert_eq!(mismatched, 2);
         assert_eq!(heat(1e-9), [0, 0, 0]);
         assert_eq!(heat(1.0), [255, 255, 255]);
+    }
+
+    #[test]
+    fn errors_are_measured_before_the_clamp() {
+        // The sphere light's frame peaks far above display white (its highlights); the frames
+        // keep those values, and the f32 error there is measured, not clamped to 0.
+        let kind = SnyderLight::Sphere;
+        let peak = peak(kind).unwrap();
+        assert!(peak > 2.0, "{peak}");
+        let j = (peak / 0.9).log2().ceil() as i32;
+        let a = frame::<f64>(kind, j).unwrap();
+        let b = frame::<f32>(kind, j).unwrap();
+        let (i, top) = a
+            .iter()
+            .enumerate()
+            .map(|(i, p)| (i, p.rgb.into_iter().fold(0.0, f64::max)))
+            .fold((0, 0.0), |m, x| if x.1 > m.1 { x } else { m });
+        // Power-of-two scalings are exact in f64: the same peak both ways.
+        assert_eq!(top, peak);
+        let over = a.iter().filter(|p| p.rgb.iter().any(|&x| x > 1.0)).count();
+        assert!(over > 100, "{over} pixels above white");
+        let (map, max, _) = error_map(&a, &b, None);
+        assert!(map[i] > 0.0 && map[i] <= max, "{} {max}", map[i]);
+        // f32 against f64 at display scale: below 1e-5 of white even there (measured 9.5e-6).
+        assert!(max < 1e-5, "{max}");
     }
 }

@@ -114,54 +114,134 @@ pub fn blit(pix: &mut Pixmap, rgb: &[[u8; 3]], w: u32, h: u32, x0: u32, y0: u32)
     }
 }
 
+/// `s` broken into lines at most `max_w` pixels wide in `font`: at spaces where it can, inside
+/// a word only when the word alone is wider than a line.
+pub fn wrap(s: &str, font: Font, max_w: i32) -> Vec<String> {
+    let per = text_width("x", font).max(1);
+    let max_chars = (max_w / per).max(1) as usize;
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in s.split(' ') {
+        let mut word: Vec<char> = word.chars().collect();
+        // A word wider than a line: full lines of it first.
+        while word.len() > max_chars {
+            if !line.is_empty() {
+                lines.push(std::mem::take(&mut line));
+            }
+            lines.push(word.drain(..max_chars).collect());
+        }
+        let word: String = word.into_iter().collect();
+        let len = line.chars().count();
+        if len == 0 {
+            line = word;
+        } else if len + 1 + word.chars().count() <= max_chars {
+            line.push(' ');
+            line.push_str(&word);
+        } else {
+            lines.push(std::mem::replace(&mut line, word));
+        }
+    }
+    if !line.is_empty() || lines.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+/// Line heights of the two fonts.
+fn line_h(font: Font) -> u32 {
+    match font {
+        Font::Small => 11,
+        Font::Big => 17,
+    }
+}
+
+/// Draws `lines` from `(x, y)` down; returns the height used.
+fn lines_at(pix: &mut Pixmap, lines: &[String], x: i32, y: i32, c: [u8; 3], font: Font) -> u32 {
+    for (i, l) in lines.iter().enumerate() {
+        text(pix, l, x, y + (i as u32 * line_h(font)) as i32, c, font);
+    }
+    lines.len() as u32 * line_h(font)
+}
+
 const MARGIN: u32 = 10;
-const HEADER: u32 = 30;
-const LABEL: u32 = 20;
 
 /// A sheet of `panels` in a grid of `cols` columns (all panels the size of the first), the
-/// title on top, each panel's title under it, `caption` at the bottom.
+/// title on top, each panel's title under it, `caption` at the bottom. The sheet is as wide as
+/// the grid; the title, the panel titles and the caption are wrapped to fit (a panel title to
+/// its panel's width), so no text runs into another.
 pub fn sheet(title: &str, panels: &[Panel], cols: usize, caption: &str) -> Pixmap {
     let (pw, ph) = panels.first().map_or((1, 1), |p| (p.w, p.h));
     let cols = cols.max(1) as u32;
     let rows = (panels.len() as u32).div_ceil(cols).max(1);
-    let cap_h = if caption.is_empty() { 0 } else { 16 };
-    let fit =
-        (text_width(title, Font::Big).max(text_width(caption, Font::Small)) as u32) + 2 * MARGIN;
-    let w = (MARGIN + cols * (pw + MARGIN)).max(fit);
-    let h = HEADER + rows * (ph + LABEL) + cap_h + MARGIN;
+    let w = (MARGIN + cols * (pw + MARGIN)).max(240);
+    let text_w = (w - 2 * MARGIN) as i32;
+    let title_lines = wrap(title, Font::Big, text_w);
+    let cap_lines = if caption.is_empty() {
+        Vec::new()
+    } else {
+        wrap(caption, Font::Small, text_w)
+    };
+    let labels: Vec<Vec<String>> = panels
+        .iter()
+        .map(|p| wrap(&p.title, Font::Small, pw as i32))
+        .collect();
+    // Each row's label band fits its tallest label.
+    let label_h: Vec<u32> = (0..rows)
+        .map(|r| {
+            let most = labels
+                .iter()
+                .skip((r * cols) as usize)
+                .take(cols as usize)
+                .map(Vec::len)
+                .max()
+                .unwrap_or(1) as u32;
+            most * line_h(Font::Small) + 9
+        })
+        .collect();
+    let header = 8 + title_lines.len() as u32 * line_h(Font::Big) + 5;
+    let cap_h = if cap_lines.is_empty() {
+        0
+    } else {
+        cap_lines.len() as u32 * line_h(Font::Small) + 4
+    };
+    let h = header + rows * ph + label_h.iter().sum::<u32>() + cap_h + MARGIN;
     let mut pix = Pixmap::new(w, h).expect("sheet size is positive and small");
     pix.fill(Color::from_rgba8(BG[0], BG[1], BG[2], 255));
-    text(
+    lines_at(
         &mut pix,
-        title,
+        &title_lines,
         MARGIN as i32,
         8,
         [235, 235, 235],
         Font::Big,
     );
-    for (k, p) in panels.iter().enumerate() {
+    let mut row_y = Vec::with_capacity(rows as usize);
+    let mut y = header;
+    for lh in &label_h {
+        row_y.push(y);
+        y += ph + lh;
+    }
+    for (k, (p, label)) in panels.iter().zip(&labels).enumerate() {
         let (c, r) = (k as u32 % cols, k as u32 / cols);
-        let (x, y) = (MARGIN + c * (pw + MARGIN), HEADER + r * (ph + LABEL));
+        let (x, y) = (MARGIN + c * (pw + MARGIN), row_y[r as usize]);
         blit(&mut pix, &p.rgb, p.w, p.h, x, y);
-        text(
+        lines_at(
             &mut pix,
-            &p.title,
+            label,
             x as i32,
             (y + ph + 5) as i32,
             [200, 200, 205],
             Font::Small,
         );
     }
-    if !caption.is_empty() {
-        text(
-            &mut pix,
-            caption,
-            MARGIN as i32,
-            (h - MARGIN - 12) as i32,
-            [150, 150, 160],
-            Font::Small,
-        );
-    }
+    lines_at(
+        &mut pix,
+        &cap_lines,
+        MARGIN as i32,
+        y as i32,
+        [150, 150, 160],
+        Font::Small,
+    );
     pix
 }
 
@@ -172,4 +252,27 @@ pub fn save(pix: &Pixmap, dir: &Path, name: &str) -> Result<PathBuf, String> {
     pix.save_png(&path)
         .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_breaks_at_spaces_and_inside_words_only_when_needed() {
+        // 6 px per character: 60 px is 10 characters.
+        assert_eq!(wrap("up +y", Font::Small, 60), ["up +y"]);
+        assert_eq!(
+            wrap("sky (.5,.5,1), ground (.2,1,.2)", Font::Small, 60),
+            ["sky", "(.5,.5,1),", "ground", "(.2,1,.2)"]
+        );
+        assert_eq!(
+            wrap("a host-sim/scenes/example.toml", Font::Small, 60),
+            ["a", "host-sim/s", "cenes/exam", "ple.toml"]
+        );
+        assert_eq!(wrap("", Font::Big, 60), [""]);
+        for line in wrap("the same, seen from above-right of it all", Font::Small, 90) {
+            assert!(text_width(&line, Font::Small) <= 90, "{line}");
+        }
+    }
 }

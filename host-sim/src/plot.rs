@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use arealight::{CapLight, HemisphereLight, PhongLobe, Vec3};
 use clap::Args;
-use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
+use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Rect, Stroke, StrokeDash, Transform};
 
 use crate::figure::{self, text, text_width, Font};
 
@@ -66,11 +66,21 @@ fn curve(label: String, dashed: bool, f: impl Fn(f64) -> f64) -> Curve {
     }
 }
 
+/// `num/den pi` in lowest terms, as Snyder writes it: `pi`, `pi/6`, `2pi/5`.
 fn sigma_name(num: u32, den: u32) -> String {
-    match (num, den) {
+    let g = gcd(num, den).max(1);
+    match (num / g, den / g) {
         (1, 1) => "pi".into(),
         (1, d) => format!("pi/{d}"),
         (n, d) => format!("{n}pi/{d}"),
+    }
+}
+
+fn gcd(a: u32, b: u32) -> u32 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
     }
 }
 
@@ -170,14 +180,15 @@ pub fn draw(pix: &mut Pixmap, plot: &Plot, x0: f32, y0: f32, w: f32, h: f32) {
         [235, 235, 235],
         Font::Small,
     );
-    // Curves.
-    for (k, c) in plot.curves.iter().enumerate() {
-        let col = if c.dashed {
+    // Curves, then the legend on an opaque box over them (top right).
+    let colour = |k: usize, c: &Curve| {
+        if c.dashed {
             [230, 230, 230]
         } else {
             COLOURS[k % COLOURS.len()]
-        };
-        paint.set_color_rgba8(col[0], col[1], col[2], 255);
+        }
+    };
+    let stroke_of = |c: &Curve| {
         let mut stroke = Stroke {
             width: 2.0,
             ..Stroke::default()
@@ -186,6 +197,11 @@ pub fn draw(pix: &mut Pixmap, plot: &Plot, x0: f32, y0: f32, w: f32, h: f32) {
             stroke.width = 1.5;
             stroke.dash = StrokeDash::new(vec![6.0, 4.0], 0.0);
         }
+        stroke
+    };
+    for (k, c) in plot.curves.iter().enumerate() {
+        let col = colour(k, c);
+        paint.set_color_rgba8(col[0], col[1], col[2], 255);
         let mut pb = PathBuilder::new();
         for (i, &(x, y)) in c.pts.iter().enumerate() {
             let (sx, sy) = (px(x), py(y.clamp(ymin, ymax)));
@@ -196,19 +212,36 @@ pub fn draw(pix: &mut Pixmap, plot: &Plot, x0: f32, y0: f32, w: f32, h: f32) {
             }
         }
         if let Some(path) = pb.finish() {
-            pix.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+            pix.stroke_path(&path, &paint, &stroke_of(c), Transform::identity(), None);
         }
-        // Legend entry.
-        let (lx, ly) = (r - 118.0, t + 6.0 + 13.0 * k as f32);
+    }
+    let label_w = plot
+        .curves
+        .iter()
+        .map(|c| text_width(&c.label, Font::Small))
+        .max()
+        .unwrap_or(0) as f32;
+    let box_w = 22.0 + label_w + 8.0;
+    let (bx, by) = (r - box_w - 4.0, t + 4.0);
+    if let Some(rect) = Rect::from_xywh(bx, by, box_w, 13.0 * plot.curves.len() as f32 + 6.0) {
+        paint.set_color_rgba8(figure::BG[0], figure::BG[1], figure::BG[2], 235);
+        pix.fill_rect(rect, &paint, Transform::identity(), None);
+        paint.set_color_rgba8(70, 70, 80, 255);
+        let path = PathBuilder::from_rect(rect);
+        pix.stroke_path(&path, &paint, &grid, Transform::identity(), None);
+    }
+    for (k, c) in plot.curves.iter().enumerate() {
+        let col = colour(k, c);
+        paint.set_color_rgba8(col[0], col[1], col[2], 255);
+        let (lx, ly) = (bx + 4.0, by + 4.0 + 13.0 * k as f32);
         let mut pb = PathBuilder::new();
         pb.move_to(lx, ly + 5.0);
         pb.line_to(lx + 18.0, ly + 5.0);
         if let Some(path) = pb.finish() {
-            pix.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+            pix.stroke_path(&path, &paint, &stroke_of(c), Transform::identity(), None);
         }
         text(pix, &c.label, lx as i32 + 22, ly as i32, col, Font::Small);
     }
-    let _ = FillRule::Winding;
 }
 
 /// A figure: a title and its plots in one row.
@@ -223,10 +256,13 @@ pub struct PlotFigure {
 
 /// Renders a figure to a pixmap.
 pub fn render_figure(f: &PlotFigure) -> Pixmap {
-    let (pw, ph) = (380u32, 290u32);
     let n = f.plots.len().max(1) as u32;
     let cols = if n == 4 { 2 } else { n.min(3) };
     let rows = n.div_ceil(cols);
+    // Plots at least 380 wide, wider when the title needs the room (no text is cut).
+    let title_w = text_width(f.title, Font::Big) as u32 + 20;
+    let pw = 380u32.max((title_w.saturating_sub(20)).div_ceil(cols));
+    let ph = 290u32;
     let mut pix = Pixmap::new(cols * pw + 20, rows * ph + 40).expect("positive size");
     pix.fill(Color::from_rgba8(
         figure::BG[0],
@@ -327,9 +363,11 @@ pub fn figures() -> Result<Vec<PlotFigure>, arealight::Error> {
         for k in (1..=5).rev() {
             let l = cap(k, 10)?;
             let peak = l.phong(&lobe, z);
-            cs.push(curve(format!("s = {k}pi/10"), k == 5, move |w| {
-                l.phong(&lobe, dir(w)) / peak
-            }));
+            cs.push(curve(
+                format!("s = {}", sigma_name(k, 10)),
+                k == 5,
+                move |w| l.phong(&lobe, dir(w)) / peak,
+            ));
         }
         fig6.push(Plot {
             title: format!("n = {n}"),
@@ -415,6 +453,16 @@ pub fn main(args: &PlotArgs) -> std::process::ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sigma_names_are_in_lowest_terms() {
+        assert_eq!(sigma_name(1, 10), "pi/10");
+        assert_eq!(sigma_name(5, 10), "pi/2");
+        assert_eq!(sigma_name(4, 10), "2pi/5");
+        assert_eq!(sigma_name(2, 6), "pi/3");
+        assert_eq!(sigma_name(1, 1), "pi");
+        assert_eq!(sigma_name(3, 10), "3pi/10");
+    }
 
     #[test]
     fn figure_curves_match_snyders_stated_values() {

@@ -8,6 +8,19 @@
 //! `L = (-1, 1, 1)/sqrt 3`. Each tile shows the model's value alone (no ambient, no albedo),
 //! scaled so that its brightest pixel is white (the scale is printed under the label as the
 //! tile's peak value), clamped and sRGB-encoded.
+//!
+//! Anti-aliasing: the figures and scene files are supersampled (`--aa K`, default 3: each pixel
+//! the mean of 3 x 3 samples, averaged in linear light before the tone curve and sRGB; see
+//! `scenes::panel`); about 9 times the shading work of one sample (measured: 9.3 s of CPU for
+//! every picture against 1.3 s with `--aa 1`). What firmware can afford: the rasterizer draws
+//! one sample per pixel. On the RP2040 demo frame (23.5 M cycles single core, of which 6.9 M
+//! scan conversion for 13 000 pixels and 530 triangle setups, README "Firmware"), 2 x 2
+//! supersampling would multiply the scan conversion by up to 4 (about 28 M cycles: a frame of
+//! about 45 M, 0.34 s at 133 MHz instead of 0.18 s) and need linear samples in the band
+//! (6 bytes each: 46 KiB for a 480 x 16 band, plus 15 KiB of depth, where one-sample bands take
+//! 15 KiB in all), while the frame is already 5 times over the 30 fps budget: not affordable
+//! there. Coverage-based edge anti-aliasing (blending only the silhouette pixels, a few thousand
+//! per frame) would cost a fraction of a million cycles; the rasterizer does not implement it.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -39,6 +52,14 @@ pub struct RenderArgs {
     /// DIR/<file stem>.png instead of the built-in pictures. See host-sim/scenes/example.toml.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
+    /// Anti-aliasing of the figures and scene files: each pixel the mean of K x K samples
+    /// (the frame rendered K times wider and higher, averaged in linear light before the
+    /// encoding), 1 to 8, about K^2 times the work; 1 is the rasterizer's own one sample per
+    /// pixel (what firmware draws: supersampling is beyond its budget). The comparison
+    /// sheets always use one sample (they compare pixels).
+    #[arg(long, value_name = "K", default_value_t = crate::scenes::DEFAULT_AA,
+          value_parser = clap::value_parser!(u16).range(1..=crate::scenes::MAX_AA as i64))]
+    pub aa: u16,
 }
 
 impl Default for RenderArgs {
@@ -47,6 +68,7 @@ impl Default for RenderArgs {
             out: DEFAULT_OUT.into(),
             only: None,
             scene: None,
+            aa: crate::scenes::DEFAULT_AA,
         }
     }
 }
@@ -382,6 +404,7 @@ fn jobs() -> Vec<Job> {
 /// A message for an unknown `--only` name, a scene the library refuses, a bad scene file or a
 /// file that cannot be written.
 pub fn render(args: &RenderArgs) -> Result<Vec<PathBuf>, String> {
+    crate::scenes::set_supersampling(args.aa);
     if let Some(file) = &args.scene {
         return crate::scene_file::render_file(file, &args.out).map(|p| vec![p]);
     }
@@ -421,9 +444,10 @@ pub fn main(args: &RenderArgs) -> std::process::ExitCode {
             for p in &paths {
                 println!("{}", p.display());
             }
+            let n = paths.len();
             eprintln!(
-                "rendered {} pictures in {:.3} s",
-                paths.len(),
+                "rendered {n} picture{} in {:.3} s",
+                if n == 1 { "" } else { "s" },
                 start.elapsed().as_secs_f64()
             );
             std::process::ExitCode::SUCCESS

@@ -5,9 +5,11 @@
 //! RGB888 with the sRGB encoding.
 
 use arealight::illuminant::{DirectionalLuminaire, Shaped};
+use std::sync::atomic::{AtomicU16, Ordering};
+
 use arealight::raster::{
     self, mesh, Affine, Band, Camera, Cull, DrawOptions, Encoding, Lit, Material, Mesh,
-    PixelFormat, Projection, RasterError, Rgb888, Shading, Vertex,
+    PixelFormat, Projection, RasterError, Rgb888, Shading, ToneMap, Vertex,
 };
 use arealight::{
     Ambient, DirectionalLight, DistanceFalloff, Environment, Illuminant, LightFrame, LineLight,
@@ -164,6 +166,17 @@ pub struct Scene<T> {
 /// Rows per band when rendering.
 pub const BAND_ROWS: u16 = 16;
 
+/// What a frame is rendered with: camera, exposure and encoding (a scene's own, or others
+/// for the same objects and lights).
+pub struct View<'a, T> {
+    /// The camera (and viewport size).
+    pub camera: &'a Camera<T>,
+    /// Multiplies every colour before encoding.
+    pub exposure: T,
+    /// The output transfer function.
+    pub encoding: Encoding,
+}
+
 /// Renders `scene` in bands of `band_rows` rows into a full frame of `P`, cleared to
 /// `background`.
 pub fn render<T: Real, P: PixelFormat + Default>(
@@ -171,7 +184,23 @@ pub fn render<T: Real, P: PixelFormat + Default>(
     band_rows: u16,
     background: P,
 ) -> Result<Vec<P>, RasterError> {
-    let (w, h) = (scene.camera.width(), scene.camera.height());
+    let view = View {
+        camera: &scene.camera,
+        exposure: scene.exposure,
+        encoding: scene.encoding,
+    };
+    render_view(scene, &view, band_rows, background)
+}
+
+/// Renders the objects and lights of `scene` as `view` sees them, in bands of `band_rows`
+/// rows into a full frame of `P`, cleared to `background`.
+pub fn render_view<T: Real, P: PixelFormat + Default>(
+    scene: &Scene<T>,
+    view: &View<'_, T>,
+    band_rows: u16,
+    background: P,
+) -> Result<Vec<P>, RasterError> {
+    let (w, h) = (view.camera.width(), view.camera.height());
     let mut frame = Vec::with_capacity(w as usize * h as usize);
     let mut px = vec![P::default(); w as usize * band_rows as usize];
     let mut depth = vec![0u16; px.len()];
@@ -180,7 +209,7 @@ pub fn render<T: Real, P: PixelFormat + Default>(
         &mut band,
         h,
         background,
-        |b| draw_scene(scene, b),
+        |b| draw_scene(scene, view, b),
         |b| {
             let keep = (h - b.y0()).min(b.rows()) as usize * w as usize;
             frame.extend_from_slice(&b.pixels()[..keep]);
@@ -192,13 +221,15 @@ pub fn render<T: Real, P: PixelFormat + Default>(
 
 fn draw_scene<T: Real, P: PixelFormat>(
     scene: &Scene<T>,
+    view: &View<'_, T>,
     band: &mut Band<'_, P>,
 ) -> Result<(), RasterError> {
+    let camera = view.camera;
     for o in &scene.objects {
         let mesh = Mesh::new(&o.mesh.verts, &o.mesh.tris)?;
         let mut opts = DrawOptions::new(o.shading);
-        opts.exposure = scene.exposure;
-        opts.encoding = scene.encoding;
+        opts.exposure = view.exposure;
+        opts.encoding = view.encoding;
         if o.two_sided {
             opts.cull = Cull::None;
             opts.two_sided = true;
@@ -206,7 +237,7 @@ fn draw_scene<T: Real, P: PixelFormat>(
         match &o.surface {
             Surface::Lit(m) => {
                 raster::draw(
-                    &scene.camera,
+                    camera,
                     band,
                     &mesh,
                     &o.xf,
@@ -216,28 +247,163 @@ fn draw_scene<T: Real, P: PixelFormat>(
             }
             Surface::Custom(f) => {
                 let shade = |p, n, v| f(p, n, v);
-                raster::draw(&scene.camera, band, &mesh, &o.xf, &shade, &opts)?;
+                raster::draw(camera, band, &mesh, &o.xf, &shade, &opts)?;
             }
             Surface::Emissive(e) => {
                 let e = *e;
                 let shade = move |_, _, _| e;
-                raster::draw(&scene.camera, band, &mesh, &o.xf, &shade, &opts)?;
+                raster::draw(camera, band, &mesh, &o.xf, &shade, &opts)?;
             }
         }
     }
     Ok(())
 }
 
-/// Renders to an sRGB panel.
+/// A pixel of linear values: the three encoded channels as f64 (with [`Encoding::Linear`]:
+/// the linear colour times the exposure, clamped to [0, 1]), and whether anything was drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LinearPx {
+    /// Channels in [0, 1].
+    pub rgb: [f64; 3],
+    /// `false` for the background.
+    pub covered: bool,
+}
+
+impl PixelFormat for LinearPx {
+    fn from_unit<T: Real>(r: T, g: T, b: T) -> Self {
+        LinearPx {
+            rgb: [r.to_f64(), g.to_f64(), b.to_f64()],
+            covered: true,
+        }
+    }
+    fn to_rgb8(self) -> [u8; 3] {
+        self.rgb.map(|x| figure::srgb8(x as f32))
+    }
+}
+
+/// Supersampling of the built-in figures and scene files: each pixel is the mean of `k` x `k`
+/// samples (see [`panel`]).
+pub const DEFAULT_AA: u16 = 3;
+/// The largest supersampling factor (`k` x `k` samples per pixel).
+pub const MAX_AA: u16 = 8;
+
+static AA: AtomicU16 = AtomicU16::new(DEFAULT_AA);
+
+/// Sets the supersampling factor of this run's panels (clamped to `1..=MAX_AA`; 1: none).
+pub fn set_supersampling(k: u16) {
+    AA.store(k.clamp(1, MAX_AA), Ordering::Relaxed);
+}
+
+/// The supersampling factor of this run's panels.
+pub fn supersampling() -> u16 {
+    AA.load(Ordering::Relaxed)
+}
+
+/// The linear value of an encoded channel `e` in [0, 1] (the inverse of the transfer function;
+/// the tone curve is not inverted: backgrounds sit below its knee).
+fn decode(enc: Encoding, e: f64) -> f64 {
+    match enc {
+        Encoding::Linear => e,
+        Encoding::Gamma2 => e * e,
+        _ => {
+            if e <= 0.040_45 {
+                e / 12.92
+            } else {
+                ((e + 0.055) / 1.055).powf(2.4)
+            }
+        }
+    }
+}
+
+/// Renders to an sRGB panel, supersampled `k` x `k` ([`supersampling`]; 1: one sample per
+/// pixel, the rasterizer's own output).
+///
+/// Supersampling renders the frame `k` times wider and higher with the same camera
+/// ([`Camera::with_viewport`]) into linear values (the exposure divided by the encoding's
+/// white point, so that nothing the encoding would show clips), averages each `k` x `k` block
+/// in linear light (samples the background fills count as the background colour, decoded),
+/// then encodes the mean with the scene's encoding. A pixel no sample covers is the background
+/// colour exactly.
 pub fn panel<T: Real>(scene: &Scene<T>, title: &str) -> Result<Panel, RasterError> {
-    let px: Vec<Rgb888> = render(scene, BAND_ROWS, Rgb888(scene.background))?;
+    let k = supersampling();
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    let rgb = if k <= 1 {
+        let px: Vec<Rgb888> = render(scene, BAND_ROWS, Rgb888(scene.background))?;
+        px.into_iter().map(|p| p.0).collect()
+    } else {
+        supersample(scene, k)?
+    };
     Ok(Panel {
         title: title.to_string(),
-        w: scene.camera.width() as u32,
-        h: scene.camera.height() as u32,
-        rgb: px.into_iter().map(|p| p.0).collect(),
+        w: w as u32,
+        h: h as u32,
+        rgb,
     })
 }
+
+fn supersample<T: Real>(scene: &Scene<T>, k: u16) -> Result<Vec<[u8; 3]>, RasterError> {
+    let (w, h) = (
+        scene.camera.width() as usize,
+        scene.camera.height() as usize,
+    );
+    let kk = k as usize;
+    let camera = scene
+        .camera
+        .with_viewport(scene.camera.width() * k, scene.camera.height() * k)?;
+    let white: T = scene.encoding.white();
+    let view = View {
+        camera: &camera,
+        exposure: scene.exposure / white,
+        encoding: Encoding::Linear,
+    };
+    let px = render_view(scene, &view, BAND_ROWS, LinearPx::default())?;
+    let white = white.to_f64();
+    let bg = scene
+        .background
+        .map(|c| decode(scene.encoding, f64::from(c) / 255.0) / white);
+    let n = (kk * kk) as f64;
+    let mut out = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            let mut sum = [0.0f64; 3];
+            let mut covered = 0;
+            for j in 0..kk {
+                let row = (y * kk + j) * w * kk;
+                for i in 0..kk {
+                    let p = px[row + x * kk + i];
+                    let v = if p.covered {
+                        covered += 1;
+                        p.rgb
+                    } else {
+                        bg
+                    };
+                    for c in 0..3 {
+                        sum[c] += v[c];
+                    }
+                }
+            }
+            if covered == 0 {
+                out.push(scene.background);
+                continue;
+            }
+            let c = arealight::Rgb::new(sum[0] / n, sum[1] / n, sum[2] / n);
+            let p: Rgb888 = raster::encode_pixel(c, white, scene.encoding);
+            out.push(p.0);
+        }
+    }
+    Ok(out)
+}
+
+/// The tone curve of the figures whose highlights exceed the display's white: linear up to
+/// the knee, compressed above it to reach white at the white point (see [`ToneMap`]).
+pub fn figure_tone() -> Result<Encoding, RasterError> {
+    Ok(Encoding::SrgbTone(ToneMap::new(FIGURE_KNEE, FIGURE_WHITE)?))
+}
+
+/// The figures' tone curve's knee, percent of display white.
+pub const FIGURE_KNEE: u8 = 50;
+/// The figures' tone curve's white point, percent of display white.
+pub const FIGURE_WHITE: u16 = 400;
 
 /// `0.8 / (largest channel of the diffuse term at p, n)`: the exposure that shows a reference
 /// surface at 80 % (1 when the light gives nothing there).
@@ -378,7 +544,7 @@ pub fn snyder_scene<T: Real + 'static>(
         lights: Lights(vec![light]),
         exposure,
         background: [20, 22, 30],
-        encoding: Encoding::Srgb,
+        encoding: figure_tone()?,
     })
 }
 
@@ -433,7 +599,7 @@ fn snyder_fig7() -> Result<tiny_skia::Pixmap, RasterError> {
         "Snyder, fig. 7: comparison of area light source results (f32, per-pixel Lambert + Phong)",
         &panels,
         5,
-        "same scene and materials; each panel exposed so a floor point under the light reads 80%; Phong m = 8..24",
+        "same scene and materials; each panel exposed so that the floor at the origin (between the objects) is 80 % of display white before the tone curve (linear to 50 %, compressed above, white at 400 %); Phong m = 8..24",
     ))
 }
 
@@ -472,13 +638,13 @@ fn june_fig20_3() -> Result<tiny_skia::Pixmap, RasterError> {
     )?;
     side.background = [0, 0, 0];
     Ok(figure::sheet(
-        "June, fig. 20-3: lit sphere using hemisphere lighting",
+        "June, fig. 20-3: hemisphere lighting of a sphere",
         &[
-            panel(&scene, "sky (.5,.5,1), ground (.2,1,.2), up +y")?,
+            panel(&scene, "sky (.5,.5,1), ground (.2,1,.2)")?,
             panel(&side, "the same, seen from above-right")?,
         ],
         2,
-        "sky_ground, exact (June eq. 20.7); f32, Gouraud-free per-pixel",
+        "sky_ground with the sky toward +y (up), exact (June eq. 20.7); f32, shaded per pixel",
     ))
 }
 
@@ -543,19 +709,19 @@ fn june_fig20_17() -> Result<tiny_skia::Pixmap, RasterError> {
             lights,
             exposure: 1.0,
             background: [0, 0, 0],
-            encoding: Encoding::Srgb,
+            encoding: figure_tone()?,
         })
     };
     let a = mk(Lights(vec![Box::new(point), Box::new(ambient)]))?;
     let b = mk(Lights(vec![Box::new(area), Box::new(ambient)]))?;
     Ok(figure::sheet(
-        "June, fig. 20-17: uberlight-like shader (June's parameters)",
+        "June, fig. 20-17: uberlight-like shader, June's parameters",
         &[
             panel(&a, "(a) point light x shape x falloff + ambient")?,
             panel(&b, "(b) the same beam on a square area light")?,
         ],
         2,
-        "superellipse a,b,A,B,d = .2,.3,.3,.4,.8; zones 1..2 (edges .4, .8); falloff M=2, d0=1, alpha=1",
+        "superellipse a,b,A,B,d = .2,.3,.3,.4,.8; zones 1..2 (edges .4, .8); falloff M=2, d0=1, alpha=1; tone curve linear to 50 %, white at 400 %",
     ))
 }
 
@@ -582,7 +748,9 @@ fn quad_mesh<T: Real>(verts: [Vec3<T>; 4], n: Vec3<T>) -> MeshBuf<T> {
 }
 
 fn arvo_fig5() -> Result<tiny_skia::Pixmap, RasterError> {
+    // Top row: the luminaire at three orders; bottom row: the glossy floor at three orders.
     let mut panels = Vec::new();
+    let mut bottom = Vec::new();
     let orders_l = [1u32, 5, 20];
     let orders_r = [10u32, 50, 200];
     for row in 0..3 {
@@ -606,7 +774,7 @@ fn arvo_fig5() -> Result<tiny_skia::Pixmap, RasterError> {
         )?;
         let grey = Material::matte(c(0.7, 0.7, 0.7))?;
         let scene = Scene {
-            camera: camera([0.0, 3.4, 4.2], [0.0, 0.4, 0.0], 45.0, 200, 160)?,
+            camera: camera([0.0, 3.4, 4.2], [0.0, 0.4, 0.0], 45.0, 220, 176)?,
             objects: vec![
                 Object::new(
                     plane(8.0, 8.0, 8, 8)?,
@@ -662,20 +830,21 @@ fn arvo_fig5() -> Result<tiny_skia::Pixmap, RasterError> {
             ));
         }
         let scene = Scene {
-            camera: camera([0.3, 1.1, 3.0], [0.0, 0.5, -1.5], 50.0, 200, 160)?,
+            camera: camera([0.3, 1.1, 3.0], [0.0, 0.5, -1.5], 50.0, 220, 176)?,
             objects,
             lights: Lights(vec![]),
             exposure: 1.0,
             background: [10, 10, 14],
             encoding: Encoding::Srgb,
         };
-        panels.push(panel(&scene, &format!("glossy reflection, order {n}"))?);
+        bottom.push(panel(&scene, &format!("glossy reflection, order {n}"))?);
     }
+    panels.extend(bottom);
     Ok(figure::sheet(
-        "Arvo, fig. 5: directional luminaire (left) and glossy reflection of a window (right)",
+        "Arvo, fig. 5: directional luminaire (top), glossy reflection (bottom)",
         &panels,
-        2,
-        "left: double-axis moments, emission ((-u).axis)^m x (m+2)/2; right: (m+2)/2pi int (u.mr)^m (n.u) du",
+        3,
+        "top: double-axis moments, emission ((-u).axis)^m x (m+2)/2; bottom: a window's reflection on a glossy floor, (m+2)/2pi int (u.mr)^m (n.u) du",
     ))
 }
 
@@ -722,7 +891,7 @@ fn arvo_fig8() -> Result<tiny_skia::Pixmap, RasterError> {
             lights: Lights(vec![]),
             exposure: 1.4,
             background: [0, 0, 0],
-            encoding: Encoding::Srgb,
+            encoding: figure_tone()?,
         };
         panels.push(panel(&scene, &format!("frosted glass, order {m}"))?);
     }
@@ -730,7 +899,7 @@ fn arvo_fig8() -> Result<tiny_skia::Pixmap, RasterError> {
         "Arvo, fig. 8: frosted glass (glossy transmission, double-axis moments)",
         &panels,
         3,
-        "three non-convex emitters 1.2 behind a pane; radiance (m+2)/2pi int (-u.e)^m (-n.u) du",
+        "three emitters 1.2 behind a pane (a triangle, a non-convex L, a rectangle); radiance (m+2)/2pi int (-u.e)^m (-n.u) du; tone curve linear to 50 %, white at 400 %",
     ))
 }
 
@@ -799,14 +968,14 @@ fn picott_plates() -> Result<tiny_skia::Pixmap, RasterError> {
             lights: Lights(vec![light]),
             exposure,
             background: [8, 8, 10],
-            encoding: Encoding::Srgb,
+            encoding: figure_tone()?,
         };
         panels.push(panel(&scene, title)?);
     }
     Ok(figure::sheet(
-        "Picott's plates: the same lane under a point, a linear and an area light",
+        "Picott's plates: one lane under a point, a linear and an area light",
         &panels,
         3,
-        "diffuse: point 1/d^2, line_lambert k=2, polygon_lambert; specular: Picott's peaks (line, rect)",
+        "diffuse: point 1/d^2, line_lambert k=2, polygon_lambert; specular: Picott's peaks (line, rect); exposed so the lane under the point light's position is 80 % before the tone curve (linear to 50 %, white at 400 %)",
     ))
 }
