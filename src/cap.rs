@@ -199,9 +199,14 @@ impl<T: Real> CapLight<T> {
 
     /// `[cap_lambert]`: exact Lambertian irradiance, normalized (in [0, 1]).
     ///
-    /// Accuracy: see the README's table (f64 against quadrature, f32 against f64).
+    /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization and 1 dot product; in the fillet also 1 sqrt and 2 atan2.
     /// Fallback: 0 for a zero or non-finite `n`.
+    ///
+    /// <!-- BEGIN acc-cap_lambert: target/accuracy/model-cap_lambert.md -->
+    /// Measured: f64 within 1.2e-13 of its reference (the independent quadrature); against f64,
+    /// f32 2.8e-7, Fast32 1.1e-5; 306 052 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-cap_lambert -->
     #[inline]
     pub fn lambert(&self, n: Vec3<T>) -> T {
         match n.normalize() {
@@ -234,6 +239,11 @@ impl<T: Real> CapLight<T> {
     ///
     /// Cost: 1 normalization, 1 cross product, 1 sqrt, 1 atan2, a cubic.
     /// Fallback: 0 for a zero or non-finite `n`.
+    ///
+    /// <!-- BEGIN acc-cap_lambert_hermite: target/accuracy/model-cap_lambert_hermite.md -->
+    /// Measured: against f64, f32 2.3e-7, Fast32 9.4e-6, Fixed22 1.2e-6; 325 752 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-cap_lambert_hermite -->
     #[inline]
     pub fn lambert_hermite(&self, n: Vec3<T>) -> T {
         match crate::vec3::angle_to(n, self.axis) {
@@ -320,9 +330,15 @@ impl<T: Real> SphereLight<T> {
 
     /// `[sphere_lambert]`: exact Lambertian irradiance at `p` with normal `n`, normalized.
     ///
-    /// Accuracy: see the README's table. Cost: 2 normalizations, 1 division, 1 sqrt; in the
+    /// Accuracy: measured, below. Cost: 2 normalizations, 1 division, 1 sqrt; in the
     /// fillet also 1 sqrt and 2 atan2. Fallback: 0 for a point inside or on the sphere, or a
     /// zero or non-finite input.
+    ///
+    /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->
+    /// Measured: f64 within 2.8e-15 of its reference (the independent quadrature); against f64,
+    /// f32 6.3e-7 (ill-conditioned: 2.0e-6), Fast32 3.0e-5 (ill-conditioned: 8.5e-5); 60 516
+    /// cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-sphere_lambert -->
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
         self.try_lambert(p, n).unwrap_or(T::ZERO)
@@ -345,6 +361,11 @@ impl<T: Real> SphereLight<T> {
     ///
     /// Cost: that of [`SphereLight::lambert`] plus 2 atan2 and ~20 multiply-adds.
     /// Fallback: as [`SphereLight::lambert`].
+    ///
+    /// <!-- BEGIN acc-sphere_lambert_hermite: target/accuracy/model-sphere_lambert_hermite.md -->
+    /// Measured: against f64, f32 6.5e-7 (ill-conditioned: 1.9e-6), Fast32 2.9e-5
+    /// (ill-conditioned: 8.3e-5), Fixed22 9.9e-5; 80 216 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-sphere_lambert_hermite -->
     #[inline]
     pub fn lambert_hermite(&self, p: Vec3<T>, n: Vec3<T>) -> T {
         self.try_lambert_hermite(p, n).unwrap_or(T::ZERO)

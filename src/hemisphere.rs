@@ -44,6 +44,11 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// Accuracy: 2 ULP plus the normalization of `n`. Cost: 1 normalization, 1 dot product.
     /// Fallback: 0 for a zero or non-finite `n`.
+    ///
+    /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
+    /// Measured: f64 within 5.6e-16 of its reference (the independent quadrature); against f64,
+    /// f32 1.3e-7, Fast32 4.5e-6, Fixed22 8.5e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-hemi_const -->
     #[inline]
     pub fn lambert_const(&self, n: Vec3<T>) -> T {
         match n.normalize() {
@@ -55,9 +60,14 @@ impl<T: Real> HemisphereLight<T> {
     /// `[hemi_cos]`: Lambertian irradiance (normalized, in [0, 2/3]) from the cosine-weighted
     /// hemisphere (Snyder eq. 5).
     ///
-    /// Accuracy: f64 within 1e-15 of quadrature, f32 within 3e-7 of f64 (tests/hemisphere.rs).
+    /// Accuracy: measured below (f64 against the quadrature of tests/hemisphere.rs).
     /// Cost: 1 normalization, 1 cross product, 2 sqrt, 1 atan2, ~12 multiply-adds.
     /// Fallback: 0 for a zero or non-finite `n`.
+    ///
+    /// <!-- BEGIN acc-hemi_cos: target/accuracy/model-hemi_cos.md -->
+    /// Measured: f64 within 6.7e-16 of its reference (the independent quadrature); against f64,
+    /// f32 1.4e-7, Fast32 5.4e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-hemi_cos -->
     #[inline]
     pub fn lambert_cos(&self, n: Vec3<T>) -> T {
         match angle_to(n, self.axis) {
@@ -110,6 +120,11 @@ impl<T: Real> OvercastSky<T> {
     ///
     /// Accuracy: as [`HemisphereLight::lambert_cos`], times `C`. Cost: that of `lambert_cos`
     /// plus 4 multiply-adds. Fallback: 0 for a zero or non-finite `n` (or an overflowing `C`).
+    ///
+    /// <!-- BEGIN acc-sky_overcast: target/accuracy/model-sky_overcast.md -->
+    /// Measured: f64 within 1.1e-15 of its reference (the independent quadrature); against f64,
+    /// f32 1.7e-7, Fast32 4.1e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-sky_overcast -->
     #[inline]
     pub fn lambert(&self, n: Vec3<T>) -> T {
         match angle_to(n, self.sky.axis) {
@@ -164,6 +179,11 @@ impl<T: Real> SkyGround<T> {
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`. Cost: 1
     /// normalization, 1 dot product, 6 multiply-adds. Fallback: black for a zero or non-finite `n`.
+    ///
+    /// <!-- BEGIN acc-sky_ground: target/accuracy/model-sky_ground.md -->
+    /// Measured: f64 within 5.6e-16 of its reference (the independent quadrature); against f64,
+    /// f32 1.1e-7, Fast32 3.7e-6, Fixed22 9.7e-7; 205 878 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-sky_ground -->
     #[inline]
     pub fn irradiance(&self, n: Vec3<T>) -> Rgb<T> {
         match n.normalize() {

@@ -175,6 +175,12 @@ impl<T: Real> Sh9<T> {
     /// # Errors
     /// [`Error::NotFinite`] / [`Error::ZeroLength`] for `axis`; [`Error::NotFinite`] or
     /// [`Error::AlphaOutOfRange`] for `alpha`; [`Error::NotFinite`] for `colour`.
+    ///
+    /// <!-- BEGIN acc-sh9_disc_irradiance: target/accuracy/model-sh9_disc_irradiance.md -->
+    /// Measured: f64 within 2.7e-15 of its reference (the independent quadrature); against f64,
+    /// f32 1.2e-6 (ill-conditioned: 1.0e-6), Fast32 1.6e-5 (ill-conditioned: 1.4e-5), Fixed22
+    /// 4.8e-6; 75 874 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-sh9_disc_irradiance -->
     pub fn disc(axis: Vec3<T>, alpha: T, colour: Rgb<T>) -> Result<Self, Error> {
         if !alpha.is_finite() {
             return Err(Error::NotFinite("alpha"));
@@ -271,6 +277,11 @@ impl<T: Real> Sh9Irradiance<T> {
     ///
     /// Accuracy: a few ULPs of the largest coefficient. Cost: 1 normalization and 27
     /// multiply-adds. Fallback: black for a zero or non-finite `n`.
+    ///
+    /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
+    /// Measured: f64 within 1.3e-15 of its reference (the independent quadrature); against f64,
+    /// f32 5.7e-7, Fast32 1.2e-5, Fixed22 3.1e-6; 309 210 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-sh9_irradiance -->
     #[inline]
     pub fn irradiance(&self, n: Vec3<T>) -> Rgb<T> {
         let Some(n) = n.normalize() else {
