@@ -12,15 +12,17 @@
 //! Anti-aliasing: the figures and scene files are supersampled (`--aa K`, default 3: each pixel
 //! the mean of 3 x 3 samples, averaged in linear light before the tone curve and sRGB; see
 //! `scenes::panel`); about 9 times the shading work of one sample (measured: 8.8 s of CPU for
-//! every picture against 1.4 s with `--aa 1`, on one x86-64 machine under load). What firmware can afford: the rasterizer draws
-//! one sample per pixel. On the RP2040 demo frame (23.5 M cycles single core, of which 6.9 M
-//! scan conversion for 13 000 pixels and 530 triangle setups, README "Firmware"), 2 x 2
-//! supersampling would multiply the scan conversion by up to 4 (about 28 M cycles: a frame of
-//! about 45 M, 0.34 s at 133 MHz instead of 0.18 s) and need linear samples in the band
-//! (6 bytes each: 46 KiB for a 480 x 16 band, plus 15 KiB of depth, where one-sample bands take
-//! 15 KiB in all), while the frame is already 5 times over the 30 fps budget: not affordable
-//! there. Coverage-based edge anti-aliasing (blending only the silhouette pixels, a few thousand
-//! per frame) would cost a fraction of a million cycles; the rasterizer does not implement it.
+//! every picture against 1.4 s with `--aa 1`, on one x86-64 machine under load).
+//!
+//! What firmware can afford: the rasterizer draws one sample per pixel. On the RP2040 demo
+//! frame (23.5 M cycles single core, of which 6.9 M scan conversion for 13 000 pixels and 530
+//! triangle setups, README "Firmware"), 2 x 2 supersampling would multiply the scan conversion
+//! by up to 4 (about 28 M cycles: a frame of about 45 M, 0.34 s at 133 MHz instead of 0.18 s)
+//! and need linear samples in the band (6 bytes each: 46 KiB for a 480 x 16 band, plus 15 KiB
+//! of depth, where one-sample bands take 15 KiB in all), while the frame is already 5 times
+//! over the 30 fps budget: not affordable there. Coverage-based edge anti-aliasing (blending
+//! only the silhouette pixels, a few thousand per frame) would cost a fraction of a million
+//! cycles; the rasterizer does not implement it.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
