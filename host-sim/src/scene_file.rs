@@ -587,7 +587,20 @@ fn grid_fits(a: u16, b: u16, keys: &str, span: Range<usize>) -> Result<(), Locat
     }
 }
 
-fn build_mesh<T: Real>(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<T>, Located> {
+/// `n` segments times the tessellation factor `tess`, rounded, at least `min` (what a budget
+/// tries; 1 keeps the file's values).
+fn tessellate(n: u16, tess: f64, min: u16) -> u16 {
+    if tess == 1.0 {
+        return n;
+    }
+    ((f64::from(n) * tess).round().clamp(f64::from(min), 4096.0) as u16).max(min)
+}
+
+fn build_mesh<T: Real>(
+    m: &MeshDef,
+    pos: usize,
+    tess: f64,
+) -> Result<scenes::MeshBuf<T>, Located> {
     let k = m.kind.get_ref().as_str();
     let Some((_, keys)) = MESH_KINDS.iter().find(|(n, _)| *n == k) else {
         let names: Vec<&str> = MESH_KINDS.iter().map(|(n, _)| *n).collect();
@@ -623,6 +636,8 @@ fn build_mesh<T: Real>(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<T>, Lo
                 .or(span_of(&m.slices))
                 .unwrap_or(pos..pos);
             grid_fits(stacks, slices, "`stacks` and `slices`", span)?;
+            let (stacks, slices) = (tessellate(stacks, tess, 2), tessellate(slices, tess, 3));
+            grid_fits(stacks, slices, "`stacks` and `slices`", span_of(&m.stacks).unwrap_or(pos..pos))?;
             scenes::sphere(r, stacks, slices).map_err(e)
         }
         "plane" => {
@@ -653,6 +668,8 @@ fn build_mesh<T: Real>(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<T>, Lo
                 }
                 None => [1, 1],
             };
+            let c = c.map(|n| tessellate(n, tess, 1));
+            grid_fits(c[0], c[1], "`cells`", span_of(&m.cells).unwrap_or(pos..pos))?;
             scenes::plane(size[0], size[1], c[0], c[1]).map_err(e)
         }
         "box" => {
@@ -695,6 +712,8 @@ fn build_mesh<T: Real>(m: &MeshDef, pos: usize) -> Result<scenes::MeshBuf<T>, Lo
                 }
                 None => [32, 16],
             };
+            let s = s.map(|n| tessellate(n, tess, 3));
+            grid_fits(s[0], s[1], "`segments`", span_of(&m.segments).unwrap_or(pos..pos))?;
             scenes::torus(major, minor, s[0], s[1]).map_err(e)
         }
     }
@@ -801,6 +820,7 @@ type Built<T> = (Scene<T>, Vec<LightInfo>, Vec<ObjectInfo>);
 fn build<T: Real + 'static>(
     file: &File,
     src: &str,
+    tess: f64,
     warnings: &mut Vec<Located>,
 ) -> Result<Built<T>, Located> {
     let cam = file.camera.get_ref();
@@ -905,7 +925,7 @@ fn build<T: Real + 'static>(
                 ),
             ));
         };
-        let mesh = build_mesh(d, pos)?;
+        let mesh = build_mesh(d, pos, tess)?;
         let xf = transform(d)?;
         object_info.push(ObjectInfo {
             kind: MESH_KINDS
@@ -1058,6 +1078,20 @@ pub fn parse(name: &str, src: &str) -> Result<Parsed, String> {
 /// As [`parse`]; also a value the library refuses in `T` (for example a coordinate beyond
 /// the fixed-point range).
 pub fn parse_as<T: Real + 'static>(name: &str, src: &str) -> Result<Parsed<T>, String> {
+    parse_tessellated(name, src, 1.0)
+}
+
+/// [`parse_as`] with every mesh's segment counts (a sphere's `stacks` and `slices`, a
+/// torus's `segments`, a plane's `cells`; not a box) times `tess`, rounded, at least their
+/// minimum: what `host-sim budget --scene` tries besides the file's own tessellation.
+///
+/// # Errors
+/// As [`parse_as`].
+pub fn parse_tessellated<T: Real + 'static>(
+    name: &str,
+    src: &str,
+    tess: f64,
+) -> Result<Parsed<T>, String> {
     let located = |l: Located| {
         let (line, col) = line_col(src, resolve(src, &l));
         format!("{name}:{line}:{col}: {}", l.msg)
@@ -1071,7 +1105,7 @@ pub fn parse_as<T: Real + 'static>(name: &str, src: &str) -> Result<Parsed<T>, S
         })
     })?;
     let mut warnings = Vec::new();
-    let (scene, lights, objects) = build(&file, src, &mut warnings).map_err(located)?;
+    let (scene, lights, objects) = build(&file, src, tess, &mut warnings).map_err(located)?;
     let warnings = warnings
         .into_iter()
         .map(|w| {

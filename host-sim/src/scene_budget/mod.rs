@@ -39,6 +39,8 @@ pub struct Row {
     pub backend: &'static str,
     /// What the shading is, in words.
     pub shading: String,
+    /// The meshes' segment counts times this (1: as written).
+    pub tessellation: f64,
     /// The predicted frame, in the chip's unit.
     pub predicted: Prediction,
     /// Milliseconds at the chip's clock.
@@ -76,9 +78,13 @@ pub struct Budget {
     pub skipped: Vec<Skipped>,
 }
 
-/// The shading assignments tried: as written, all Gouraud, all per pixel, and each lit object
-/// alone per pixel. (Emissive objects are always Gouraud.) Deduplicated.
-fn assignments(written: &[Shading], lit: &[bool], names: &[String]) -> Vec<(String, Vec<Shading>)> {
+/// An option's shading: its label, the shading per object, the tessellation factor.
+type Plan = (String, Vec<Shading>, f64);
+
+/// The options tried per backend: as written, all Gouraud, all per pixel, each lit object
+/// alone per pixel, and the first two with the meshes' segments halved and doubled.
+/// (Emissive objects are always Gouraud.) Deduplicated.
+fn assignments(written: &[Shading], lit: &[bool], names: &[String]) -> Vec<Plan> {
     let all = |s: Shading| -> Vec<Shading> {
         lit.iter()
             .map(|&l| if l { s } else { Shading::Gouraud })
@@ -96,16 +102,22 @@ fn assignments(written: &[Shading], lit: &[bool], names: &[String]) -> Vec<(Stri
             out.push((format!("{} per pixel", names[i]), a));
         }
     }
-    let mut seen: Vec<Vec<Shading>> = Vec::new();
-    out.retain(|(_, a)| {
-        if seen.contains(a) {
+    let mut plans: Vec<Plan> = out.into_iter().map(|(l, a)| (l, a, 1.0)).collect();
+    for tess in [0.5, 2.0] {
+        plans.push(("as written".to_owned(), written.to_vec(), tess));
+        plans.push(("all Gouraud".to_owned(), all(Shading::Gouraud), tess));
+    }
+    let mut seen: Vec<(Vec<Shading>, u64)> = Vec::new();
+    plans.retain(|(_, a, t)| {
+        let key = (a.clone(), t.to_bits());
+        if seen.contains(&key) {
             false
         } else {
-            seen.push(a.clone());
+            seen.push(key);
             true
         }
     });
-    out
+    plans
 }
 
 fn describe(a: &[Shading], lit: &[bool], names: &[String]) -> String {
@@ -133,30 +145,42 @@ fn rows_in<T: Real + 'static>(
     chip: &'static Chip,
     costs: &Costs,
     reference: &[[u8; 3]],
-    plan: &[(String, Vec<Shading>)],
+    plan: &[Plan],
     finishes: &[Finish],
     lights: &[LightCost],
     lit: &[bool],
     names: &[String],
 ) -> Result<Vec<Row>, String> {
-    let Parsed { scene, .. } = scene_file::parse_as::<T>(name, src)
-        .map_err(|e| format!("the scene does not build in {backend}: {e}"))?;
+    let mut scenes: Vec<(u64, Parsed<T>)> = Vec::new();
     let mut rows = Vec::new();
-    for (label, a) in plan {
-        let (frame, work) = work::render(&scene, a, chip.band_rows)
+    for (label, a, tess) in plan {
+        if !scenes.iter().any(|(t, _)| *t == tess.to_bits()) {
+            let parsed = scene_file::parse_tessellated::<T>(name, src, *tess)
+                .map_err(|e| format!("the scene does not build in {backend}: {e}"))?;
+            scenes.push((tess.to_bits(), parsed));
+        }
+        let Some((_, Parsed { scene, .. })) = scenes.iter().find(|(t, _)| *t == tess.to_bits())
+        else {
+            continue;
+        };
+        let (frame, work) = work::render(scene, a, chip.band_rows)
             .map_err(|e| format!("{backend}: the rasterizer refused the scene: {e}"))?;
         let (max_err, mean_err) = work::image_error(&frame, reference);
         costs.take_derived();
         let predicted = costs::predict(chip, costs, backend, &work, finishes, lights)?;
         let derived = costs.take_derived();
-        let shading = if label == "as written" {
+        let mut shading = if label == "as written" {
             format!("{} (as written)", describe(a, lit, names))
         } else {
             describe(a, lit, names)
         };
+        if *tess != 1.0 {
+            let _ = write!(shading, ", mesh segments x{tess}");
+        }
         rows.push(Row {
             backend,
             shading,
+            tessellation: *tess,
             ms: predicted.total() / (chip.mhz * 1e3),
             predicted,
             max_err,
@@ -258,7 +282,7 @@ type RowsArgs<'a> = (
     &'static Chip,
     &'a Costs,
     &'a [[u8; 3]],
-    &'a [(String, Vec<Shading>)],
+    &'a [Plan],
     &'a [Finish],
     &'a [LightCost],
     &'a [bool],
@@ -546,8 +570,20 @@ pub fn plot(b: &Budget) -> Result<Pixmap, String> {
     Ok(pix)
 }
 
-/// The emulated frames `--check` compares with: (label, assignment in words, measured units).
-fn measured(path: &Path, chip: &Chip) -> Result<Vec<(String, String, f64)>, String> {
+/// An emulated frame `--check` compares with.
+struct Measured {
+    /// Which frame.
+    label: String,
+    /// The option, in `assignments`' words.
+    plan: String,
+    /// Its cost, in the chip's unit.
+    units: f64,
+    /// The firmware's counts: shader calls, pixels, triangle setups.
+    counts: Option<[u64; 3]>,
+}
+
+/// The emulated frames of `path` for `chip` (frame 0 of each).
+fn measured(path: &Path, chip: &Chip) -> Result<Vec<Measured>, String> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut lines = text.lines();
@@ -566,6 +602,15 @@ fn measured(path: &Path, chip: &Chip) -> Result<Vec<(String, String, f64)>, Stri
             .iter()
             .filter_map(|s| get(s).and_then(|x| x.parse::<f64>().ok()))
             .sum();
+        let count = |n: &str| get(n).and_then(|x| x.parse::<u64>().ok());
+        let counts = match (
+            count("shader_calls"),
+            count("pixels"),
+            count("triangle_setups"),
+        ) {
+            (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+            _ => None,
+        };
         if let Some(fw) = get("firmware") {
             let want = if chip.cores > 1 {
                 "lit_scene_dual_core"
@@ -573,7 +618,12 @@ fn measured(path: &Path, chip: &Chip) -> Result<Vec<(String, String, f64)>, Stri
                 "lit_scene"
             };
             if fw == want {
-                out.push((format!("{fw} frame 0"), "as written".to_owned(), sum));
+                out.push(Measured {
+                    label: format!("{fw} frame 0"),
+                    plan: "as written".to_owned(),
+                    units: sum,
+                    counts,
+                });
             }
         } else if let Some(mode) = get("mode") {
             let plan = match mode {
@@ -585,7 +635,12 @@ fn measured(path: &Path, chip: &Chip) -> Result<Vec<(String, String, f64)>, Stri
                 },
             };
             let total = get("total").and_then(|x| x.parse().ok()).unwrap_or(sum);
-            out.push((format!("qemu-frame {mode} frame 0"), plan, total));
+            out.push(Measured {
+                label: format!("qemu-frame {mode} frame 0"),
+                plan,
+                units: total,
+                counts,
+            });
         }
     }
     if out.is_empty() {
@@ -601,13 +656,16 @@ pub fn check(b: &Budget, path: &Path) -> Result<(String, bool), String> {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "| emulated frame | option | predicted | measured | prediction / measured |"
+        "| emulated frame | option | predicted | measured | prediction / measured | counts (shader calls, pixels, triangle setups) |"
     );
-    let _ = writeln!(s, "|---|---|---:|---:|---:|");
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---|");
     let mut ok = true;
-    for (label, plan, units) in measured(path, b.chip)? {
+    for m in measured(path, b.chip)? {
+        let (label, plan, units) = (m.label, m.plan, m.units);
         let row = b.rows.iter().filter(|r| r.backend == backend).find(|r| {
-            if plan == "as written" {
+            if r.tessellation != 1.0 {
+                false
+            } else if plan == "as written" {
                 r.shading.ends_with("(as written)")
             } else if plan == "all Gouraud" {
                 r.shading.starts_with("Gouraud")
@@ -624,9 +682,27 @@ pub fn check(b: &Budget, path: &Path) -> Result<(String, bool), String> {
         let ratio = r.predicted.total() / units;
         let within = (ratio - 1.0).abs() <= CHECK_TOLERANCE;
         ok &= within;
+        // The host's counts must be the firmware's, exactly (the same frame path).
+        let w = &r.work;
+        let host = [
+            w.total(|o| o.vertex_calls + o.pixel_calls),
+            w.total(|o| o.pixels),
+            w.total(|o| o.setups),
+        ];
+        let counted = match m.counts {
+            Some(c) if c == host => format!("{} {} {}, equal", c[0], c[1], c[2]),
+            Some(c) => {
+                ok = false;
+                format!(
+                    "firmware {} {} {}, host {} {} {}: DIFFERENT",
+                    c[0], c[1], c[2], host[0], host[1], host[2]
+                )
+            }
+            None => "-".to_owned(),
+        };
         let _ = writeln!(
             s,
-            "| {label} | {backend}, {} | {} | {} | {:.3}{} |",
+            "| {label} | {backend}, {} | {} | {} | {:.3}{} | {counted} |",
             r.shading,
             mega(r.predicted.total()),
             mega(units),
@@ -653,7 +729,9 @@ pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
             if ok {
                 ExitCode::SUCCESS
             } else {
-                eprintln!("host-sim budget: a prediction is beyond 15 % of the emulated frame");
+                eprintln!(
+                    "host-sim budget: a prediction is beyond 15 % of the emulated frame, or the counts differ"
+                );
                 ExitCode::FAILURE
             }
         }
