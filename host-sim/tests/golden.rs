@@ -3,7 +3,8 @@
 //! Tolerance: every channel of every pixel within 2/255 of the golden image. The renders are
 //! deterministic (IEEE arithmetic and the pure-Rust `libm`), so on the machine that made the
 //! goldens they match exactly; the margin absorbs a platform whose `libm` rounds differently.
-//! To refresh after an intended change: `host-sim render --only NAMES --out host-sim/tests/golden`.
+//! The goldens are the default render (3 x 3 supersampling, the figures' tone curve); to refresh
+//! after an intended change: `host-sim render --only NAMES --out host-sim/tests/golden`.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
