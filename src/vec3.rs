@@ -66,31 +66,34 @@ impl<T: Real> Vec3<T> {
     pub fn max_abs(self) -> T {
         self.x.abs().max(self.y.abs()).max(self.z.abs())
     }
-    /// Unit vector in the same direction, or `None` for a zero, tiny (below [`Real::TINY`] in
-    /// every component) or non-finite vector.
+    /// Unit vector in the same direction, or `None` for a zero or non-finite vector.
     ///
-    /// Scales by the largest component first, so it neither overflows for huge vectors nor
-    /// underflows for small ones. Cost: 1 [`Real::rsqrt`] (floats: 1 sqrt and 1 division), the
-    /// rescaling ([`Real::rescale3`]: 1 division for floats, shifts for fixed point), ~12 other operations.
+    /// f64 and f32: every finite nonzero vector has a direction, down to the smallest subnormal
+    /// component and up to the largest finite ones. The squared length is computed directly
+    /// and the vector scaled by its inverse square root; only a squared length that under- or
+    /// overflows (below `2^-100` in f32, `2^-960` in f64, or infinite) takes a cold path that
+    /// first scales the vector by a power of two (exact). Each component within 1.5 ULP of 1
+    /// (measured, `tests/normalize.rs`). Cost (hot path): 5 operations for the squared length,
+    /// 2 comparisons, 1 square root, 1 division, 3 products: 39 instructions a call on the
+    /// Cortex-M4F (`VSQRT.F32`; 83 for the former rescaled form), 1756 on the Cortex-M0 in
+    /// soft float (2499), QEMU exact counts of one non-inlined call.
+    ///
+    /// `Fixed22` and [`crate::Fast32`]: the rescaled form: scaled by the largest component first
+    /// (`Fixed22`: by a power of two near it, exact shifts, since its squares would vanish or
+    /// saturate otherwise), and a vector whose largest component is not above [`Real::TINY`]
+    /// counts as zero; then 1 [`Real::rsqrt`].
+    ///
+    /// See [`Real::normalize3`].
     #[inline]
     pub fn normalize(self) -> Option<Self> {
-        let m = self.max_abs();
-        if !(m > T::TINY) || !m.is_finite() {
-            return None;
-        }
-        let (s, _) = self.rescale(m);
-        Some(s * s.dot(s).rsqrt())
+        T::unit3([self.x, self.y, self.z]).map(|[x, y, z]| Vec3::new(x, y, z))
     }
-    /// Like [`Vec3::normalize`] but also returns the original length.
+    /// Like [`Vec3::normalize`] but also returns the original length (for the floats its
+    /// square root of the squared length, within 2 ULPs; infinite if the length itself exceeds
+    /// the type's range).
     #[inline]
     pub fn normalize_with_length(self) -> Option<(Self, T)> {
-        let m = self.max_abs();
-        if !(m > T::TINY) || !m.is_finite() {
-            return None;
-        }
-        let (s, d) = self.rescale(m);
-        let (len, inv) = s.dot(s).sqrt_rsqrt();
-        Some((s * inv, len * d))
+        T::normalize3([self.x, self.y, self.z]).map(|([x, y, z], len)| (Vec3::new(x, y, z), len))
     }
     /// Validating normalization for constructors: `param` names the parameter in the error.
     pub fn try_normalize(self, param: &'static str) -> Result<Self, Error> {
