@@ -446,13 +446,27 @@ pub fn csv(b: &Budget) -> String {
 
 /// Frame time (x, ms) against mean error (y), one dot per option, the Pareto front joined.
 pub fn plot(b: &Budget) -> Result<Pixmap, String> {
-    let (w, h) = (760u32, 460u32);
+    let w = 900u32;
+    // The legend: one line per option (the numbers on the dots).
+    let legend_h = 14 * b.rows.len() as u32 + 10;
+    let h = 430 + legend_h;
     let mut pix = Pixmap::new(w, h).ok_or("plot size")?;
     pix.fill(tiny_skia::Color::from_rgba8(255, 255, 255, 255));
-    let (x0, y0, pw, ph) = (70.0f32, 40.0f32, 640.0f32, 340.0f32);
-    let max_ms = b.rows.iter().map(|r| r.ms).fold(1.0, f64::max) * 1.1;
+    let (x0, y0, pw, ph) = (70.0f32, 40.0f32, 780.0f32, 330.0f32);
+    // Time on a log scale (options span three orders of magnitude), whole decades.
+    let lo = b
+        .rows
+        .iter()
+        .map(|r| r.ms)
+        .fold(f64::INFINITY, f64::min)
+        .max(1e-3);
+    let hi = b.rows.iter().map(|r| r.ms).fold(lo * 10.0, f64::max);
+    let (d0, d1) = (
+        lo.log10().floor(),
+        hi.log10().ceil().max(lo.log10().floor() + 1.0),
+    );
     let max_e = b.rows.iter().map(|r| r.mean_err).fold(0.1, f64::max) * 1.15;
-    let px = |ms: f64| x0 + (ms / max_ms) as f32 * pw;
+    let px = |ms: f64| x0 + ((ms.max(1e-3).log10() - d0) / (d1 - d0)) as f32 * pw;
     let py = |e: f64| y0 + ph - (e / max_e) as f32 * ph;
     let black = [0, 0, 0];
     let mut paint = Paint::default();
@@ -474,16 +488,18 @@ pub fn plot(b: &Budget) -> Result<Pixmap, String> {
         b.scene, b.chip.name
     );
     figure::text(&mut pix, &title, x0 as i32, 10, black, Font::Big);
-    for k in 0..=4 {
-        let ms = max_ms * f64::from(k) / 4.0;
+    for d in (d0 as i32)..=(d1 as i32) {
+        let ms = 10f64.powi(d);
         figure::text(
             &mut pix,
-            &format!("{ms:.0}"),
+            &format!("{ms}"),
             px(ms) as i32 - 10,
             (y0 + ph) as i32 + 6,
             black,
             Font::Small,
         );
+    }
+    for k in 0..=4 {
         let e = max_e * f64::from(k) / 4.0;
         figure::text(
             &mut pix,
@@ -496,7 +512,7 @@ pub fn plot(b: &Budget) -> Result<Pixmap, String> {
     }
     figure::text(
         &mut pix,
-        &format!("predicted ms per frame at {} MHz", b.chip.mhz),
+        &format!("predicted ms per frame at {} MHz (log scale)", b.chip.mhz),
         (x0 + pw / 2.0) as i32 - 110,
         (y0 + ph) as i32 + 22,
         black,
@@ -555,17 +571,19 @@ pub fn plot(b: &Budget) -> Result<Pixmap, String> {
         );
     }
     let mut y = (y0 + ph) as i32 + 40;
-    let mut x = 10;
     for (i, r) in b.rows.iter().enumerate() {
         let (cr, cg, cb) = colour(r.backend);
-        let label = format!("{} {} {}", i + 1, r.backend, r.shading);
-        let width = figure::text_width(&label, Font::Small) + 16;
-        if x + width > w as i32 {
-            x = 10;
-            y += 12;
-        }
-        figure::text(&mut pix, &label, x, y, [cr, cg, cb], Font::Small);
-        x += width;
+        let label = format!(
+            "{:>2} {}{}: {}: {:.1} ms, mean error {:.2}",
+            i + 1,
+            r.backend,
+            if r.pareto { " (Pareto front)" } else { "" },
+            r.shading,
+            r.ms,
+            r.mean_err
+        );
+        figure::text(&mut pix, &label, 10, y, [cr, cg, cb], Font::Small);
+        y += 14;
     }
     Ok(pix)
 }
@@ -793,6 +811,214 @@ pub fn calibrate_main(counts: &Path) -> ExitCode {
         Err(e) => {
             eprintln!("host-sim budget --calibrate: {e}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// The board demo's own code, for the test that the demo's scene file is its frame.
+#[cfg(test)]
+#[allow(dead_code, unused_imports, unused_attributes, clippy::all)]
+#[path = "../../../boards/demo-scene/src/lib.rs"]
+mod demo_scene;
+
+#[cfg(test)]
+mod tests {
+    use super::costs::{call_cost, predict, Costs, Finish, LightCost, CHIPS};
+    use super::work::{ObjectWork, Work};
+    use super::*;
+
+    use super::demo_scene;
+
+    const DEMO: &str = include_str!("../../scenes/demo.toml");
+
+    /// A cost table in the committed file's format: every item one chip needs.
+    fn synthetic() -> Costs {
+        let mut csv = String::from("chip,backend,item,cost,source\n");
+        for (item, c) in [
+            ("lit_matte", 10.0),
+            ("lit_specular", 20.0),
+            ("diffuse:polygon", 1000.0),
+            ("phong8:polygon", 2000.0),
+            ("phong32:polygon", 4400.0),
+            ("diffuse:ambient", 1.0),
+            ("phong8:ambient", 0.0),
+            ("phong32:ambient", 0.0),
+            ("vertex_lit", 300.0),
+            ("vertex_unlit", 200.0),
+            ("shade_vertex", 50.0),
+            ("band_clear", 7000.0),
+            ("triangle", 2000.0),
+            ("pixel", 80.0),
+            ("pixel_shaded", 90.0),
+            ("flush_byte", 1.5),
+        ] {
+            csv.push_str(&format!("chip,f32,{item},{c},calibrate\n"));
+        }
+        Costs::parse(&csv, "chip").unwrap()
+    }
+
+    #[test]
+    fn a_shader_call_costs_the_material_and_each_light_with_phong_linear_in_m() {
+        let c = synthetic();
+        let lights = [
+            LightCost {
+                kind: "polygon".into(),
+                vertices: 8,
+            },
+            LightCost {
+                kind: "ambient".into(),
+                vertices: 0,
+            },
+        ];
+        // m = 20: halfway between 8 and 32 on the polygon's phong: 3200; an octagon is twice
+        // a quad.
+        let got = call_cost(&c, "f32", &lights, Finish::Lit { specular: true, m: 20 }).unwrap();
+        assert_eq!(got, 20.0 + 2.0 * (1000.0 + 3200.0) + 1.0);
+        let matte = call_cost(&c, "f32", &lights, Finish::Lit { specular: false, m: 20 }).unwrap();
+        assert_eq!(matte, 10.0 + 2.0 * 1000.0 + 1.0);
+        assert_eq!(call_cost(&c, "f32", &lights, Finish::Emissive).unwrap(), 0.0);
+        let unknown = [LightCost {
+            kind: "line".into(),
+            vertices: 0,
+        }];
+        let e = call_cost(&c, "f32", &unknown, Finish::Lit { specular: false, m: 1 }).unwrap_err();
+        assert!(e.contains("diffuse:line"), "{e}");
+    }
+
+    #[test]
+    fn a_frame_is_its_counted_work_times_the_unit_costs() {
+        let c = synthetic();
+        let chip = CHIPS.iter().find(|c| c.name == "stm32f411").unwrap();
+        let work = Work {
+            objects: vec![
+                ObjectWork {
+                    vertices_lit: 100,
+                    vertex_calls: 40,
+                    pixels: 1000,
+                    setups: 30,
+                    ..ObjectWork::default()
+                },
+                ObjectWork {
+                    vertices_unlit: 10,
+                    vertex_calls: 5,
+                    pixel_calls: 0,
+                    pixels: 200,
+                    setups: 4,
+                    ..ObjectWork::default()
+                },
+            ],
+            bands: 15,
+            bytes: 115_200,
+        };
+        let lights = [LightCost {
+            kind: "polygon".into(),
+            vertices: 4,
+        }];
+        let finishes = [Finish::Lit { specular: false, m: 1 }, Finish::Emissive];
+        let p = predict(chip, &c, "f32", &work, &finishes, &lights).unwrap();
+        assert_eq!(p.transform, 100.0 * 300.0 + 10.0 * 200.0);
+        assert_eq!(p.shade, 40.0 * (50.0 + 10.0 + 1000.0) + 5.0 * 50.0);
+        assert_eq!(p.raster, 15.0 * 7000.0 + 34.0 * 2000.0 + 1200.0 * 80.0);
+        assert_eq!(p.flush, 115_200.0 * 1.5);
+        // Two cores halve shade and raster and send every band from core 0 (twice the flush).
+        let dual = CHIPS.iter().find(|c| c.name == "rp2040-dual").unwrap();
+        let d = predict(dual, &c, "f32", &work, &finishes, &lights).unwrap();
+        assert_eq!((d.shade, d.raster, d.flush), (p.shade / 2.0, p.raster / 2.0, 2.0 * p.flush));
+    }
+
+    #[test]
+    fn the_pareto_front_and_the_recommendation() {
+        let row = |ms: f64, e: f64| Row {
+            backend: "f32",
+            shading: format!("{ms} {e}"),
+            tessellation: 1.0,
+            predicted: Prediction::default(),
+            ms,
+            max_err: e,
+            mean_err: e,
+            derived: false,
+            pareto: false,
+            work: Work::default(),
+        };
+        let mut rows = vec![row(10.0, 3.0), row(20.0, 1.0), row(30.0, 2.0), row(40.0, 0.0)];
+        mark_pareto(&mut rows);
+        let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
+        assert_eq!(front, [true, true, false, true]);
+        assert_eq!(recommend(&rows, Some(60.0), None).unwrap().ms, 10.0);
+        assert_eq!(recommend(&rows, Some(40.0), Some(1.5)).unwrap().ms, 20.0);
+        assert!(recommend(&rows, Some(100.0), Some(1.5)).is_none());
+    }
+
+    /// The scene file of the demo is the firmware's frame: the host's counts of the scene
+    /// file equal `boards/demo-scene`'s own frame 0 (the board code, rendered here), in f32
+    /// with its 16-row bands.
+    #[test]
+    fn the_demo_scene_file_counts_what_the_board_demo_draws() {
+        use arealight::raster::{Band, Rgb565};
+        let mut buffers = Box::new(demo_scene::MeshBuffers::<f32>::new());
+        let mut demo = demo_scene::Demo::new(&mut buffers, Shading::Gouraud).unwrap();
+        let (mut px, mut depth) = (
+            vec![Rgb565(0); demo_scene::BAND_PIXELS],
+            vec![0u16; demo_scene::BAND_PIXELS],
+        );
+        let mut band = Band::new(&mut px, Some(&mut depth), demo_scene::WIDTH, 0).unwrap();
+        let report = demo
+            .render_frame(0, &mut band, &mut || 0, |_| Ok::<(), ()>(()))
+            .unwrap();
+        let parsed = scene_file::parse_as::<f32>("demo.toml", DEMO).unwrap();
+        let shading = vec![Shading::Gouraud; parsed.scene.objects.len()];
+        let (_, work) = work::render(&parsed.scene, &shading, demo_scene::BAND_ROWS).unwrap();
+        let s = report.stats;
+        assert_eq!(
+            [
+                work.total(|o| o.vertex_calls + o.pixel_calls),
+                work.total(|o| o.pixels),
+                work.total(|o| o.setups)
+            ],
+            [u64::from(s.shaded), u64::from(s.pixels), u64::from(s.rasterized)]
+        );
+        assert_eq!(work.total(|o| o.vertices_lit), 231 + 275);
+        assert_eq!(work.total(|o| o.vertices_unlit), 77);
+        assert_eq!(work.bands, 15);
+    }
+
+    /// Every scene of host-sim/scenes on every chip: rows for the chip's first backend (the
+    /// firmware's), finite positive times, and the f32 per-pixel frame within a level of the
+    /// f64 one (the same path in another precision).
+    #[test]
+    fn every_scene_budgets_on_every_chip() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        scenes.sort();
+        assert!(scenes.len() >= 3, "{scenes:?}");
+        for scene in &scenes {
+            for chip in CHIPS {
+                let b = budget(scene, chip.name).unwrap();
+                let first = chip.backends[0];
+                assert!(
+                    b.rows.iter().any(|r| r.backend == first)
+                        || b.skipped.iter().any(|s| s.backend == first),
+                    "{} {}",
+                    scene.display(),
+                    chip.name
+                );
+                for r in &b.rows {
+                    assert!(r.ms.is_finite() && r.ms > 0.0, "{r:?}");
+                    assert!((0.0..=255.0).contains(&r.max_err), "{r:?}");
+                }
+                if let Some(r) = b
+                    .rows
+                    .iter()
+                    .find(|r| r.backend == "f32" && r.shading == "per pixel" && r.tessellation == 1.0)
+                {
+                    assert!(r.max_err <= 1.0, "{} {}: {r:?}", scene.display(), chip.name);
+                }
+                assert!(b.rows.iter().any(|r| r.pareto));
+            }
         }
     }
 }
