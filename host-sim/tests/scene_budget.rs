@@ -31,22 +31,36 @@ fn budget(args: &[&str], out: &Path) -> Output {
 fn writes_the_table_the_csv_and_the_plot_and_answers_the_question() {
     let dir = scratch("files");
     let out = budget(&["--chip", "rp2040", "--fps", "30"], &dir);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let stdout = String::from_utf8(out.stdout).unwrap();
     for ext in ["md", "csv", "png"] {
         let p = dir.join(format!("demo-rp2040.{ext}"));
         assert!(stdout.contains(&p.display().to_string()), "{stdout}");
-        assert!(std::fs::metadata(&p).unwrap().len() > 100, "{}", p.display());
+        assert!(
+            std::fs::metadata(&p).unwrap().len() > 100,
+            "{}",
+            p.display()
+        );
     }
     // The demo does not reach 30 fps on one RP2040 core: the answer says so and by how much.
     assert!(stdout.contains("Nothing meets 30 fps."), "{stdout}");
     let csv = std::fs::read_to_string(dir.join("demo-rp2040.csv")).unwrap();
     let first = csv.lines().nth(1).unwrap();
-    assert!(first.starts_with("rp2040,fixed,false,\"Gouraud (as written)\""), "{first}");
+    assert!(
+        first.starts_with("rp2040,fixed,false,\"Gouraud (as written)\""),
+        "{first}"
+    );
     // A generous frame rate is met by the firmware's own configuration.
     let out = budget(&["--chip", "rp2040", "--fps", "4"], &dir);
     let stdout = String::from_utf8(out.stdout).unwrap();
-    assert!(stdout.contains("Recommended for 4 fps: fixed with Gouraud"), "{stdout}");
+    assert!(
+        stdout.contains("Recommended for 4 fps: fixed with Gouraud"),
+        "{stdout}"
+    );
 }
 
 #[test]
@@ -68,7 +82,10 @@ fn check_fails_when_the_emulated_frame_is_far_from_the_prediction() {
             format!("{header}\ngouraud,0,{total},0,0,0,{total},0,{total},{counts}\n"),
         )
         .unwrap();
-        let out = budget(&["--chip", "stm32f411", "--check", frames.to_str().unwrap()], &dir);
+        let out = budget(
+            &["--chip", "stm32f411", "--check", frames.to_str().unwrap()],
+            &dir,
+        );
         assert_eq!(
             out.status.success(),
             ok,
@@ -82,7 +99,10 @@ fn check_fails_when_the_emulated_frame_is_far_from_the_prediction() {
         format!("{header}\ngouraud,0,{predicted},0,0,0,{predicted},0,{predicted},1,2,3\n"),
     )
     .unwrap();
-    let out = budget(&["--chip", "stm32f411", "--check", frames.to_str().unwrap()], &dir);
+    let out = budget(
+        &["--chip", "stm32f411", "--check", frames.to_str().unwrap()],
+        &dir,
+    );
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stdout).contains("DIFFERENT"));
 }
@@ -93,5 +113,8 @@ fn an_unknown_chip_is_an_error_naming_the_chips() {
     let out = budget(&["--chip", "esp32"], &dir);
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("unknown chip \"esp32\"") && err.contains("rp2040-dual"), "{err}");
+    assert!(
+        err.contains("unknown chip \"esp32\"") && err.contains("rp2040-dual"),
+        "{err}"
+    );
 }
