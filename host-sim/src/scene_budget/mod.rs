@@ -358,6 +358,29 @@ pub fn markdown(b: &Budget, fps: Option<f64>, max_error: Option<f64>) -> String 
         let _ = writeln!(s, "\n{}: not possible: {}", k.backend, k.why);
     }
     let _ = writeln!(s);
+    s.push_str(&answer(b, fps, max_error));
+    s
+}
+
+/// The answer to `--fps` and `--max-error`: the recommended option, or what misses and by how
+/// much.
+pub fn answer(b: &Budget, fps: Option<f64>, max_error: Option<f64>) -> String {
+    let mut s = String::new();
+    if let Some(r) = b
+        .rows
+        .iter()
+        .find(|r| r.tessellation == 1.0 && r.shading.ends_with("(as written)"))
+    {
+        let _ = writeln!(
+            s,
+            "As written (the file's shading and meshes, {} on this chip): {:.1} ms ({:.1} fps), mean error {:.2}, max {:.0} levels.\n",
+            r.backend,
+            r.ms,
+            1000.0 / r.ms,
+            r.mean_err,
+            r.max_err
+        );
+    }
     let want = match (fps, max_error) {
         (None, None) => "the fastest option".to_owned(),
         (Some(f), None) => format!("{f} fps"),
@@ -736,7 +759,8 @@ fn stem(path: &Path) -> String {
         .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
 }
 
-/// `host-sim budget --scene`: prints the table, writes DIR/<stem>-<chip>.md, .csv and .png;
+/// `host-sim budget --scene`: prints the table, writes DIR/<stem>-<chip>.md, .csv, .png and
+/// -answer.md (the answer and the check alone);
 /// with `--check`, compares and fails beyond the tolerance.
 pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
     match run(args, scene) {
@@ -764,14 +788,16 @@ fn run(args: &BudgetArgs, scene: &Path) -> Result<(Vec<PathBuf>, bool), String> 
     let chip = args.chip.as_deref().unwrap_or("rp2040");
     let b = budget(scene, chip)?;
     let mut md = markdown(&b, args.fps, args.max_error);
+    let mut short = answer(&b, args.fps, args.max_error);
     let mut ok = true;
     if let Some(frames) = &args.check {
         let (table, fine) = check(&b, frames)?;
-        let _ = write!(
-            md,
+        let checked = format!(
             "\nAgainst the emulated frames of `{}`:\n\n{table}",
             frames.display()
         );
+        md.push_str(&checked);
+        short.push_str(&checked);
         ok = fine;
     }
     print!("{md}");
@@ -783,7 +809,10 @@ fn run(args: &BudgetArgs, scene: &Path) -> Result<(Vec<PathBuf>, bool), String> 
     let csv_path = args.out.join(format!("{base}.csv"));
     std::fs::write(&csv_path, csv(&b)).map_err(|e| format!("{}: {e}", csv_path.display()))?;
     let png = figure::save(&plot(&b)?, &args.out, &format!("{base}.png"))?;
-    Ok((vec![md_path, csv_path, png], ok))
+    // The answer and the check alone (for the README's worked example).
+    let answer_path = args.out.join(format!("{base}-answer.md"));
+    std::fs::write(&answer_path, &short).map_err(|e| format!("{}: {e}", answer_path.display()))?;
+    Ok((vec![md_path, csv_path, png, answer_path], ok))
 }
 
 /// `host-sim budget --calibrate`: writes host-sim/costs.csv from the emulators' measurements.
@@ -872,16 +901,46 @@ mod tests {
         ];
         // m = 20: halfway between 8 and 32 on the polygon's phong: 3200; an octagon is twice
         // a quad.
-        let got = call_cost(&c, "f32", &lights, Finish::Lit { specular: true, m: 20 }).unwrap();
+        let got = call_cost(
+            &c,
+            "f32",
+            &lights,
+            Finish::Lit {
+                specular: true,
+                m: 20,
+            },
+        )
+        .unwrap();
         assert_eq!(got, 20.0 + 2.0 * (1000.0 + 3200.0) + 1.0);
-        let matte = call_cost(&c, "f32", &lights, Finish::Lit { specular: false, m: 20 }).unwrap();
+        let matte = call_cost(
+            &c,
+            "f32",
+            &lights,
+            Finish::Lit {
+                specular: false,
+                m: 20,
+            },
+        )
+        .unwrap();
         assert_eq!(matte, 10.0 + 2.0 * 1000.0 + 1.0);
-        assert_eq!(call_cost(&c, "f32", &lights, Finish::Emissive).unwrap(), 0.0);
+        assert_eq!(
+            call_cost(&c, "f32", &lights, Finish::Emissive).unwrap(),
+            0.0
+        );
         let unknown = [LightCost {
             kind: "line".into(),
             vertices: 0,
         }];
-        let e = call_cost(&c, "f32", &unknown, Finish::Lit { specular: false, m: 1 }).unwrap_err();
+        let e = call_cost(
+            &c,
+            "f32",
+            &unknown,
+            Finish::Lit {
+                specular: false,
+                m: 1,
+            },
+        )
+        .unwrap_err();
         assert!(e.contains("diffuse:line"), "{e}");
     }
 
@@ -914,7 +973,13 @@ mod tests {
             kind: "polygon".into(),
             vertices: 4,
         }];
-        let finishes = [Finish::Lit { specular: false, m: 1 }, Finish::Emissive];
+        let finishes = [
+            Finish::Lit {
+                specular: false,
+                m: 1,
+            },
+            Finish::Emissive,
+        ];
         let p = predict(chip, &c, "f32", &work, &finishes, &lights).unwrap();
         assert_eq!(p.transform, 100.0 * 300.0 + 10.0 * 200.0);
         assert_eq!(p.shade, 40.0 * (50.0 + 10.0 + 1000.0) + 5.0 * 50.0);
@@ -923,7 +988,10 @@ mod tests {
         // Two cores halve shade and raster and send every band from core 0 (twice the flush).
         let dual = CHIPS.iter().find(|c| c.name == "rp2040-dual").unwrap();
         let d = predict(dual, &c, "f32", &work, &finishes, &lights).unwrap();
-        assert_eq!((d.shade, d.raster, d.flush), (p.shade / 2.0, p.raster / 2.0, 2.0 * p.flush));
+        assert_eq!(
+            (d.shade, d.raster, d.flush),
+            (p.shade / 2.0, p.raster / 2.0, 2.0 * p.flush)
+        );
     }
 
     #[test]
@@ -940,7 +1008,12 @@ mod tests {
             pareto: false,
             work: Work::default(),
         };
-        let mut rows = vec![row(10.0, 3.0), row(20.0, 1.0), row(30.0, 2.0), row(40.0, 0.0)];
+        let mut rows = vec![
+            row(10.0, 3.0),
+            row(20.0, 1.0),
+            row(30.0, 2.0),
+            row(40.0, 0.0),
+        ];
         mark_pareto(&mut rows);
         let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
         assert_eq!(front, [true, true, false, true]);
@@ -975,7 +1048,11 @@ mod tests {
                 work.total(|o| o.pixels),
                 work.total(|o| o.setups)
             ],
-            [u64::from(s.shaded), u64::from(s.pixels), u64::from(s.rasterized)]
+            [
+                u64::from(s.shaded),
+                u64::from(s.pixels),
+                u64::from(s.rasterized)
+            ]
         );
         assert_eq!(work.total(|o| o.vertices_lit), 231 + 275);
         assert_eq!(work.total(|o| o.vertices_unlit), 77);
@@ -1010,11 +1087,9 @@ mod tests {
                     assert!(r.ms.is_finite() && r.ms > 0.0, "{r:?}");
                     assert!((0.0..=255.0).contains(&r.max_err), "{r:?}");
                 }
-                if let Some(r) = b
-                    .rows
-                    .iter()
-                    .find(|r| r.backend == "f32" && r.shading == "per pixel" && r.tessellation == 1.0)
-                {
+                if let Some(r) = b.rows.iter().find(|r| {
+                    r.backend == "f32" && r.shading == "per pixel" && r.tessellation == 1.0
+                }) {
                     assert!(r.max_err <= 1.0, "{} {}: {r:?}", scene.display(), chip.name);
                 }
                 assert!(b.rows.iter().any(|r| r.pareto));
