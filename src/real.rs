@@ -232,13 +232,17 @@ pub trait Real:
     #[inline(always)]
     fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
         let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
-        // Each component, not `m`: the NaN-aware `max` drops a NaN component, so `m` can be
-        // finite for a vector with a NaN (a constant `true` for fixed point: no cost there).
-        if !(m > Self::TINY) || !finite3(v) {
+        if !(m > Self::TINY) {
             return None;
         }
         let ([x, y, z], d) = Self::rescale3(v, m);
-        let (len, inv) = (x * x + y * y + z * z).sqrt_rsqrt();
+        let s2 = x * x + y * y + z * z;
+        // Tested after the rescaling, not on `m`: the NaN-aware `max` drops a NaN component,
+        // and a NaN or infinite component makes `s2` NaN (a constant `true` for fixed point).
+        if !s2.is_finite() {
+            return None;
+        }
+        let (len, inv) = s2.sqrt_rsqrt();
         Some(([x * inv, y * inv, z * inv], len * d))
     }
     /// `Some(v / |v|)` for a finite nonzero `v`, `None` otherwise: [`Real::normalize3`]
@@ -247,11 +251,15 @@ pub trait Real:
     #[inline(always)]
     fn unit3(v: [Self; 3]) -> Option<[Self; 3]> {
         let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
-        if !(m > Self::TINY) || !finite3(v) {
+        if !(m > Self::TINY) {
             return None;
         }
         let ([x, y, z], _) = Self::rescale3(v, m);
-        let r = (x * x + y * y + z * z).rsqrt();
+        let s2 = x * x + y * y + z * z;
+        if !s2.is_finite() {
+            return None;
+        }
+        let r = s2.rsqrt();
         Some([x * r, y * r, z * r])
     }
     /// `round(clamp01(self) * max)` (NaN as 0): a unit value to an integer level, as pixel
