@@ -596,11 +596,7 @@ fn tessellate(n: u16, tess: f64, min: u16) -> u16 {
     ((f64::from(n) * tess).round().clamp(f64::from(min), 4096.0) as u16).max(min)
 }
 
-fn build_mesh<T: Real>(
-    m: &MeshDef,
-    pos: usize,
-    tess: f64,
-) -> Result<scenes::MeshBuf<T>, Located> {
+fn build_mesh<T: Real>(m: &MeshDef, pos: usize, tess: f64) -> Result<scenes::MeshBuf<T>, Located> {
     let k = m.kind.get_ref().as_str();
     let Some((_, keys)) = MESH_KINDS.iter().find(|(n, _)| *n == k) else {
         let names: Vec<&str> = MESH_KINDS.iter().map(|(n, _)| *n).collect();
@@ -637,7 +633,12 @@ fn build_mesh<T: Real>(
                 .unwrap_or(pos..pos);
             grid_fits(stacks, slices, "`stacks` and `slices`", span)?;
             let (stacks, slices) = (tessellate(stacks, tess, 2), tessellate(slices, tess, 3));
-            grid_fits(stacks, slices, "`stacks` and `slices`", span_of(&m.stacks).unwrap_or(pos..pos))?;
+            grid_fits(
+                stacks,
+                slices,
+                "`stacks` and `slices`",
+                span_of(&m.stacks).unwrap_or(pos..pos),
+            )?;
             scenes::sphere(r, stacks, slices).map_err(e)
         }
         "plane" => {
@@ -713,7 +714,12 @@ fn build_mesh<T: Real>(
                 None => [32, 16],
             };
             let s = s.map(|n| tessellate(n, tess, 3));
-            grid_fits(s[0], s[1], "`segments`", span_of(&m.segments).unwrap_or(pos..pos))?;
+            grid_fits(
+                s[0],
+                s[1],
+                "`segments`",
+                span_of(&m.segments).unwrap_or(pos..pos),
+            )?;
             scenes::torus(major, minor, s[0], s[1]).map_err(e)
         }
     }
