@@ -4,7 +4,8 @@
 //!
 //! - the counter self-check (TIM2 of `netduinoplus2` under `-icount shift=0` counts executed
 //!   instructions exactly: a `subs`/`bne` loop of n iterations takes exactly 2n), re-checked
-//!   here from the numbers the firmware prints;
+//!   here from the numbers the firmware prints, with the empty region's count that every
+//!   count is net of (`base` to `base + 2`), and no count wrapped;
 //! - every model id x backend x input is present, and every value is within the accuracy
 //!   target of the f64 reference computed here from the same (rounded) inputs;
 //! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model);
@@ -294,8 +295,16 @@ fn parse(out: &str) -> Result<(Vec<Line>, Option<SelfCheck>), String> {
 /// The counter self-check, from the firmware's numbers: `base` is the two TIM2 loads alone,
 /// `n<N>` the same loads around N iterations of `subs`/`bne` (all in assembly). Each must be
 /// exactly `base + 2N`, and the loop lengths must include a long one.
+///
+/// `empty` is the count of an empty measured region in Rust (`Tim2::empty`), which the
+/// firmware subtracts from every count: the same two loads plus at most a re-materialized
+/// address of TIM2_CNT (a literal load on the M0, `movw`/`movt` on the M4F), so it must be
+/// `base` to `base + 2` (`counter::EMPTY_SLACK`). Below `base` the loads themselves would not be
+/// counted; above, the empty region holds code that a measured call does not, and every count
+/// would be short by the difference.
 fn check_counter(s: &[(String, u32)]) -> Result<String, String> {
-    let base = s.iter().find(|(k, _)| k == "base").map(|kv| kv.1);
+    let get = |key: &str| s.iter().find(|(k, _)| k == key).map(|kv| kv.1);
+    let (base, empty) = (get("base"), get("empty"));
     let loops: Vec<(u32, u32)> = s
         .iter()
         .filter_map(|(k, v)| Some((k.strip_prefix('n')?.parse().ok()?, *v)))
@@ -305,14 +314,16 @@ fn check_counter(s: &[(String, u32)]) -> Result<String, String> {
         .map(|(k, v)| format!("{k}={v}"))
         .collect::<Vec<_>>()
         .join(" ");
-    match base {
-        Some(b)
+    match (base, empty) {
+        (Some(b), Some(e))
             if (1..=2).contains(&b)
+                && (b..=b + EMPTY_SLACK).contains(&e)
                 && loops.iter().any(|&(n, _)| n >= 1000)
                 && loops.iter().all(|&(n, c)| c == b + 2 * n) =>
         {
             Ok(format!(
-                "loads alone {b}, loops {} (each exactly 2n + {b})",
+                "loads alone {b}, empty region {e} (subtracted from every count; {b} to {b} + \
+                 {EMPTY_SLACK}), loops {} (each exactly 2n + {b})",
                 loops
                     .iter()
                     .map(|(n, c)| format!("n={n}: {c}"))
@@ -322,10 +333,41 @@ fn check_counter(s: &[(String, u32)]) -> Result<String, String> {
         }
         _ => Err(format!(
             "counter self-check FAILED ({shown}): a loop of n subs/bne iterations must read \
-             exactly 2n more on TIM2 than the loads alone; TIM2 does not count executed \
-             instructions exactly on this QEMU ({}), so no instruction count can be trusted",
+             exactly 2n more on TIM2 than the loads alone (base), and the empty region (empty, \
+             subtracted from every count) must read base to base + {EMPTY_SLACK}; TIM2 does not \
+             count executed instructions exactly on this QEMU ({}), so no instruction count can \
+             be trusted",
             qemu_version()
         )),
+    }
+}
+
+/// The slack of the empty region over the two loads (see [`check_counter`]); the firmware's
+/// `counter::EMPTY_SLACK`.
+const EMPTY_SLACK: u32 = 2;
+
+/// No count wrapped: the firmware subtracts the empty region's count from each raw TIM2
+/// difference and stops with a `FAIL` line if a region reads less; were it to wrap instead,
+/// the count would be within `empty` of 2^32. No call here comes near 2^31 instructions, so
+/// every count of a `V`, `A`, `D`, `S` or `Q` line must be below it.
+fn check_no_wrap(short: &str, out: &str, failures: &mut Vec<String>) {
+    for l in out.lines() {
+        let f: Vec<&str> = l.split_whitespace().collect();
+        let fields: &[usize] = match f.first().copied() {
+            Some("V") | Some("D") => &[4],
+            Some("A") => &[5],
+            Some("S") => &[3],
+            Some("Q") => &[5, 6],
+            _ => continue,
+        };
+        for &i in fields {
+            match f.get(i).map(|x| x.parse::<u64>()) {
+                Some(Ok(n)) if n < 1 << 31 => {}
+                _ => failures.push(format!(
+                    "{short}: count field {i} of `{l}` is not a count below 2^31 (wrapped?)"
+                )),
+            }
+        }
     }
 }
 
@@ -702,6 +744,7 @@ fn check_target(
             }
         }
     }
+    check_no_wrap(short, &out, &mut failures);
     check_points(short, &lines, &sizes, rows, &mut failures);
     check_scene(short, &out, &mut failures);
     check_demo_shade(short, &out, rows, &mut failures);

@@ -6,7 +6,14 @@
 //! per executed instruction, and the machine clocks TIM2 at 1 GHz of that clock: TIM2_CNT
 //! advances by one per executed instruction. [`self_check`] verifies this on the running QEMU
 //! before any count is trusted; [`Tim2::empty`] is the count of an empty measured region (the
-//! fixed overhead of the second read), which callers subtract.
+//! fixed overhead of the second read), which callers subtract ([`Tim2::net`]).
+//!
+//! The empty region's count is checked against the self-check's `base` (the two TIM2 loads
+//! alone, in assembly): the Rust region holds the same two loads plus at most the
+//! re-materialization of TIM2_CNT's address (one literal load on the M0, `movw`/`movt` on the
+//! M4F), so `base <= empty <= base + 2`. [`self_check`] fails otherwise, the `SELF` line
+//! prints both and the host checks the same relation. A measured region can never read fewer
+//! instructions than the empty one: [`Tim2::net`] fails (a `FAIL` line) rather than wrap.
 
 use core::fmt::Write;
 use core::hint::black_box;
@@ -96,6 +103,26 @@ impl Tim2 {
         t
     }
 
+    /// The instructions of a measured region whose raw TIM2 difference is `raw`: `raw` less
+    /// [`Tim2::empty`]. A region reads at least the empty region's count (it holds the same
+    /// loads), so `raw < empty` means the counter is not counting instructions: that stops the
+    /// run with a `FAIL` line instead of wrapping to a count near 2^32.
+    #[inline]
+    #[allow(dead_code)] // boards/qemu-frame includes this file and subtracts on its own
+    pub fn net(&self, raw: u32) -> u32 {
+        match raw.checked_sub(self.empty) {
+            Some(n) => n,
+            None => fail(
+                &mut Line::new(),
+                format_args!(
+                    "a measured region read {raw} on TIM2, fewer than the empty region's {}: \
+                     the counter does not count instructions",
+                    self.empty
+                ),
+            ),
+        }
+    }
+
     /// The raw TIM2 difference around `f`.
     #[inline(always)]
     pub fn raw<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
@@ -150,13 +177,19 @@ fn timed_loop(n: u32) -> u32 {
 /// The loop lengths of the self-check.
 pub const SELF_N: [u32; 4] = [1, 10, 1000, 3000];
 
+/// The most instructions the empty Rust region may hold beyond the two loads: the address of
+/// TIM2_CNT loaded again (see the module docs).
+pub const EMPTY_SLACK: u32 = 2;
+
 /// Checks that TIM2 counts executed instructions exactly: a loop of n `subs`/`bne` iterations
 /// must read exactly 2n more than the two loads alone, for every n of [`SELF_N`], and every
-/// measurement must repeat exactly.
+/// measurement must repeat exactly; and that the empty region [`Tim2::empty`] (subtracted from
+/// every count) is `base` to `base + EMPTY_SLACK`.
 pub fn self_check(t: &Tim2, line: &mut Line) {
     let base = timed_loop(0);
     let _ = write!(line, "SELF empty={} base={base}", t.empty);
     let mut ok = base > 0 && base <= 2 && timed_loop(0) == base;
+    ok &= t.empty >= base && t.empty <= base + EMPTY_SLACK;
     for n in SELF_N {
         let c = timed_loop(black_box(n));
         let again = timed_loop(black_box(n));
@@ -169,8 +202,10 @@ pub fn self_check(t: &Tim2, line: &mut Line) {
             line,
             format_args!(
                 "counter self-check: a loop of n subs/bne iterations did not read exactly 2n + \
-                 {base} on TIM2 (see the SELF line); TIM2 does not count executed instructions \
-                 exactly on this QEMU"
+                 {base} on TIM2, or the empty region ({}) is not {base} to {base} + \
+                 {EMPTY_SLACK} (see the SELF line); TIM2 does not count executed instructions \
+                 exactly on this QEMU",
+                t.empty
             ),
         );
     }

@@ -98,7 +98,7 @@ impl Meter for Tim2 {
     #[inline(always)]
     fn call<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
         let (r, n) = self.raw(f);
-        (r, n.wrapping_sub(self.empty))
+        (r, self.net(n))
     }
 }
 
