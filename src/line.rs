@@ -92,9 +92,11 @@
 //! exact and cheap for every `m`). `m = 0` gives 1 if some point of the light is in front of the
 //! plane normal to `r`, else 0 (the spec's `((x)+)^0`).
 //!
-//! A shading point in the plane of the parallelogram (to within a few ULPs) gets 0, as every
-//! polygon model does there (the spec's "valid but degenerate" case): the light is seen
-//! edge-on. A shading point on the segment is invalid for every segment model.
+//! A shading point in the plane of the parallelogram (to within a few ULPs) follows the
+//! definition too: the peak is not a polygon model (the spec's "valid but degenerate" case
+//! gives those 0 there, a projection of zero solid angle), it is the largest `((u.r)+)^m`
+//! over the light's points, all of them then seen in the plane: the best over its edges. A
+//! shading point on the segment is invalid for every segment model.
 //!
 //! ## Accuracy (measured by `tests/line.rs`, which prints them as `[maxerr]` lines)
 //!
@@ -741,11 +743,12 @@ impl<T: Real> ParallelogramLight<T> {
             eu = eu * quarter;
             ev = ev * quarter;
         }
-        // In the plane (to within a few ULPs): seen edge-on, like every polygon model.
+        // In the plane (to within a few ULPs), every direction toward the light lies in the
+        // plane: no ray along r hits it (unless r lies in the plane too), and the largest
+        // ((u.r)+)^m over its points is the best over its edges (the 2D case of the segment
+        // peak; from inside the parallelogram the edges are seen in every in-plane direction).
         let height = q0.dot(self.normal);
-        if !(height.abs() > T::from_f64(4.0) * T::EPSILON * q0.max_abs()) {
-            return Ok(T::ZERO);
-        }
+        let in_plane = !(height.abs() > T::from_f64(4.0) * T::EPSILON * q0.max_abs());
         let q = [q0, q0 + eu, q0 + eu + ev, q0 + ev];
         let sigma = q.iter().fold(T::ZERO, |m, v| m.max(v.max_abs()));
         let inv = T::ONE / sigma;
@@ -760,14 +763,15 @@ impl<T: Real> ParallelogramLight<T> {
         // The ray p + lambda r (lambda > 0) hits the parallelogram iff r.(q_i x edge_i) has
         // the sign of height = (origin - p).normal on every edge (r inside the pyramid of the
         // corners; the opposite pyramid gives the opposite signs).
-        let inside = (0..4).all(|i| {
-            let t = r.dot(q[i].cross(edges[i]));
-            if height > T::ZERO {
-                t >= T::ZERO
-            } else {
-                t <= T::ZERO
-            }
-        });
+        let inside = !in_plane
+            && (0..4).all(|i| {
+                let t = r.dot(q[i].cross(edges[i]));
+                if height > T::ZERO {
+                    t >= T::ZERO
+                } else {
+                    t <= T::ZERO
+                }
+            });
         if inside {
             return Ok(lobe_power(lobe.exponent(), T::ZERO));
         }
@@ -783,8 +787,10 @@ impl<T: Real> ParallelogramLight<T> {
 
     /// `[rect_phong_peak]`: Picott's specular approximation for the parallelogram, the largest
     /// `((u.r)+)^m` over the directions `u` from `p` to its points (1 where the ray along `r`
-    /// hits it, else the best point of its four edges); `r` any length. In [0, 1]; 0 for `p` in
-    /// the parallelogram's plane (seen edge-on: the spec's degenerate case).
+    /// hits it, else the best point of its four edges); `r` any length. In [0, 1]. For `p` in
+    /// the parallelogram's plane the definition holds too (a peak is not a polygon model: it
+    /// has a value wherever a point of the light is seen): every direction toward the light
+    /// then lies in the plane, and the value is the best over the edges.
     ///
     /// Accuracy (module docs): f64 within 7e-13 of a brute-force search for m <= 1000, the
     /// error not growing with `m`; f32 within 5e-7 of f64 and Fast32 within 7.4e-6 where well

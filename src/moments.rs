@@ -117,7 +117,7 @@
 //! ill-conditioned (a ratio of two quantities of the lune's width): not yet measured.
 
 use crate::lobe::MAX_EXPONENT;
-use crate::polygon::{for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight};
+use crate::polygon::{cos_power_sums, for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight};
 use crate::vec3::cos_sin_between;
 use crate::{Error, Real, Vec3};
 
@@ -226,51 +226,6 @@ impl<T: Real> MomentSum<T> {
         let (sum, last) = cos_power_sums(self.n, x, cos_x, sin_x, a, b, f, stop);
         self.sum += alpha * sum + vg * last;
     }
-}
-
-/// Upward run of the recurrence `T(k)` of the module docs for one arc: returns
-/// `(T(n-2) + T(n-4) + ..., T(n))` (down to k = 0 or 1). With `stop = Some((coef, budget))`,
-/// stops after `T(k)` once `coef c^(k+2) <= budget` and returns `T(n) = 0` (the tail dropped).
-#[allow(clippy::too_many_arguments)]
-#[inline]
-fn cos_power_sums<T: Real>(
-    n: u32,
-    x: T,
-    cos_x: T,
-    sin_x: T,
-    a: T,
-    b: T,
-    f: T,
-    stop: Option<(T, T)>,
-) -> (T, T) {
-    let g = (a * cos_x + b * sin_x).clamp(-T::ONE, T::ONE);
-    let g2 = g * g;
-    let a2 = a * a;
-    let h = a * sin_x - b * cos_x;
-    let odd = n & 1 == 1;
-    // t = T(k); l = G^(k+1) H, l2 = beta alpha^(k+1): ready for k + 2.
-    let (mut t, mut l, mut l2, mut k) = if odd {
-        (h + b, g2 * h, b * a2, 1)
-    } else {
-        (x, g * h, b * a, 0)
-    };
-    // c^(k+2), for the early-termination bound.
-    let mut cpow = if odd { f * f.sqrt() } else { f };
-    let mut sum = T::ZERO;
-    while k < n {
-        sum += t;
-        if let Some((coef, budget)) = stop {
-            if coef * cpow <= budget {
-                return (sum, T::ZERO);
-            }
-            cpow *= f;
-        }
-        k += 2;
-        t = (l + l2 + f * T::from_u32(k - 1) * t) / T::from_u32(k);
-        l *= g2;
-        l2 *= a2;
-    }
-    (sum, t)
 }
 
 /// The second streaming clip stage: arcs of a ring (already clipped to the first plane) in,

@@ -61,7 +61,9 @@ use crate::cap::{CapLight, SphereLight};
 use crate::hemisphere::HemisphereLight;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
-use crate::polygon::{for_each_clipped_edge, PolygonLight};
+use crate::polygon::{
+    cos_power_sums, for_each_clipped_edge, products_in_range, ClippedEdge, PolygonLight,
+};
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
 #[cfg(any(feature = "cap", feature = "hemisphere"))]
@@ -275,30 +277,76 @@ impl<T: Real> SphereLight<T> {
     }
 }
 
-/// `T_sum(a, b, n, x)` of Snyder appendix G: the sum of `T(a, b, k, x) = integral from 0 to x
-/// of (a cos t + b sin t)^k dt` over `k = n, n - 2, ...` down to 0 or 1; `f = a^2 + b^2`.
-#[inline]
+/// One polygon edge's Phong terms `(w, j)` for the exponent `m`: `w` the fan's triangle
+/// `(r, ua, ub)` (the clipped solid angle, even `m`; 0 for odd `m`) and `j` the edge's `J`
+/// terms, from `G = ua x d`, `ua.ub` and the directions of its endpoints (`a = ua/|ua|` with
+/// `r.a`, and `r.b`). `None` for an edge seen end-on (`G` without a direction) or whose `|G|`
+/// or `ua.ub` leave the range where products are normal and finite ([`products_in_range`]).
 #[cfg(feature = "polygon")]
-fn cos_sin_power_integral_sum<T: Real>(n: u32, x: T, cos_x: T, sin_x: T, a: T, b: T, f: T) -> T {
-    let g = (a * cos_x + b * sin_x).clamp(-T::ONE, T::ONE);
-    let g2 = g * g;
-    let a2 = a * a;
-    let h = a * sin_x - b * cos_x;
-    let (mut t, mut l, mut l2, start) = if n & 1 == 1 {
-        (h + b, g2 * h, b * a2, 1)
-    } else {
-        (x, g * h, b * a, 0)
-    };
-    let mut sum = t;
-    let mut i = start + 2;
-    while i <= n {
-        t = (l + l2 + f.mul_u32(i - 1) * t).div_u32(i);
-        l *= g2;
-        l2 *= a2;
-        sum += t;
-        i += 2;
+#[inline(always)]
+fn phong_edge_terms<T: Real>(
+    g: Vec3<T>,
+    dot: T,
+    (ua, ra): (Vec3<T>, T),
+    rb: T,
+    r: Vec3<T>,
+    m: u32,
+) -> Option<(T, T)> {
+    let even = m & 1 == 0;
+    // An edge seen end-on (G = 0): x = 0 contributes nothing.
+    let (gu, glen) = g.normalize_with_length()?;
+    // G and ua.ub computed from subnormal or overflowing products: rescale (the caller).
+    if !products_in_range(glen, dot.abs()) {
+        return None;
     }
-    sum
+    // x = angle(ua, ub) with a consistent (cos x, sin x) pair from (ua.ub, |G|), both
+    // proportional to |ua| |ub|: the pair normalized.
+    let cs = Vec3::new(dot, glen, T::ZERO).normalize()?;
+    let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
+    let rg = r.dot(gu);
+    let w = if even {
+        // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
+        // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
+        T::TWO * (rg * sin_x).atan2(T::ONE + cos_x + ra + rb)
+    } else {
+        T::ZERO
+    };
+    if m == 0 {
+        return Some((w, T::ZERO));
+    }
+    let rp = r.dot(gu.cross(ua));
+    // x itself enters only the sums of even order (odd m).
+    let x = if even { T::ZERO } else { glen.atan2(dot) };
+    // f = a^2 + b^2 = 1 - (r.gu)^2: the second form is exact to an ULP near 1, where
+    // the recurrence raises f to the power m/2 (see cos_sin_between).
+    let f = if rg.abs() < T::HALF {
+        (T::ONE - rg) * (T::ONE + rg)
+    } else {
+        (ra * ra + rp * rp).min(T::ONE)
+    };
+    // T_sum(a, b, m - 1, x) of Snyder appendix G: every T(k), k = m - 1, m - 3, ...
+    let (sum, last) = cos_power_sums(m - 1, x, cos_x, sin_x, ra, rp, f, None);
+    Some((w, rg * (sum + last)))
+}
+
+/// [`phong_edge_terms`] from the edge scaled by a power of two (exact; the terms are
+/// scale-free): the cold path for an edge whose coordinates or products leave the normal range
+/// at its own scale. `None` for an endpoint or `G` that still has no direction.
+#[cfg(feature = "polygon")]
+#[cold]
+#[inline(never)]
+fn phong_edge_terms_rescaled<T: Real>(e: &ClippedEdge<T>, r: Vec3<T>, m: u32) -> Option<(T, T)> {
+    let s = e.rescaled()?;
+    let a = s.ua.normalize()?;
+    let b = s.ub.normalize()?;
+    phong_edge_terms(
+        s.ua.cross(s.d),
+        s.ua.dot(s.ub),
+        (a, r.dot(a)),
+        r.dot(b),
+        r,
+        m,
+    )
 }
 
 #[cfg(feature = "polygon")]
@@ -339,40 +387,31 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             };
             let end = e.ub.normalize().map(|b| (b, r.dot(b)));
             last = end.map(|(b, rb)| (e.ub, b, rb));
-            let (Some((ua, ra)), Some((_, rb))) = (start, end) else {
+            // An edge whose coordinates or products leave the normal range at this scale
+            // (below TINY or beyond 1/TINY in absolute terms): the same edge scaled by a power
+            // of two (cold; the terms are scale-free). What still has no direction then (an
+            // edge shorter than TINY relative to its distance, seen end-on) is dropped from
+            // the J terms and the fan alike. (Fixed point: nothing to rescale, decided at
+            // compile time.)
+            let terms = match (start, end) {
+                (Some(a), Some((_, rb))) => {
+                    phong_edge_terms(e.ua.cross(e.d), e.ua.dot(e.ub), a, rb, r, m)
+                }
+                _ => None,
+            };
+            let Some((w, j)) = terms.or_else(|| {
+                if T::RESOLUTION > T::ZERO {
+                    None
+                } else {
+                    phong_edge_terms_rescaled(&e, r, m)
+                }
+            }) else {
                 return;
             };
-            let g = e.ua.cross(e.d);
-            let Some((gu, glen)) = g.normalize_with_length() else {
-                return; // An edge seen end-on: x = 0 contributes nothing.
-            };
-            // x = angle(ua, ub) with a consistent (cos x, sin x) pair from (ua.ub, |G|), both
-            // proportional to |ua| |ub|: the pair normalized.
-            let dot = e.ua.dot(e.ub);
-            let Some(cs) = Vec3::new(dot, glen, T::ZERO).normalize() else {
-                return;
-            };
-            let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
-            let rg = r.dot(gu);
             if even {
-                // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
-                // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
-                fan += T::TWO * (rg * sin_x).atan2(T::ONE + cos_x + ra + rb);
+                fan += w;
             }
-            if m == 0 {
-                return;
-            }
-            let rp = r.dot(gu.cross(ua));
-            // x itself enters only the sums of even order (odd m).
-            let x = if even { T::ZERO } else { glen.atan2(dot) };
-            // f = a^2 + b^2 = 1 - (r.gu)^2: the second form is exact to an ULP near 1, where
-            // the recurrence raises f to the power m/2 (see cos_sin_between).
-            let f = if rg.abs() < T::HALF {
-                (T::ONE - rg) * (T::ONE + rg)
-            } else {
-                (ra * ra + rp * rp).min(T::ONE)
-            };
-            sum += rg * cos_sin_power_integral_sum(m - 1, x, cos_x, sin_x, ra, rp, f);
+            sum += j;
         });
         if even {
             sum += fan;
@@ -387,7 +426,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// normalizations (the edge's end vertex, reused as the next edge's start; the edge's
     /// plane normal; the `(cos x, sin x)` pair), ~5 dot products, 1 atan2 (`x` for odd m, the
     /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
-    /// and a division by the step's integer ([`Real::div_u32`]).
+    /// and a division by the step's integer ([`Real::div_u32`]). Scale-free on the float
+    /// types: an edge whose coordinates or products would leave the normal range (beyond
+    /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
+    /// scaled by a power of two first, on a cold path that costs nothing when not taken.
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane.
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {

@@ -59,6 +59,12 @@ pub struct PolygonLight<T, const N: usize = 8> {
 /// Planarity tolerance, relative to the polygon's size (spec: 1e-6).
 const PLANAR_TOL: f64 = 1e-6;
 
+/// [`PolygonLight::in_plane`]'s tolerance for fixed point, in [`Real::RESOLUTION`]s per unit
+/// of `|p - v0|_max` (the normal's rounding)...
+const IN_PLANE_REL: f64 = 1.5;
+/// ... and absolute (the products' truncation and the rounding of `p` and `v0`).
+const IN_PLANE_ABS: f64 = 3.0;
+
 impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// A polygon light from its vertices in order (either winding).
     ///
@@ -104,11 +110,26 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
 
     /// `true` if `p` lies in the polygon's plane (to within a few ULPs), where every polygon
     /// model is 0.
+    ///
+    /// Floats: `|n.(p - v0)| <= 4 EPSILON |p - v0|_max` (the rounding of `p - v0` and of the
+    /// normal, relative). Fixed point, whose rounding is absolute ([`Real::RESOLUTION`] `r`):
+    /// `<= r (1.5 |p - v0|_max + 3)`: the normal rounded to the type moves the distance by up
+    /// to `r/2 |p - v0|_1`, the three truncated products by up to `3 r` (one-sided), and `p`
+    /// and `v0`, rounded from the plane, sit up to `sqrt(3)/2 r` off it each. (The relative
+    /// term alone vanishes near vertex 0, where Fixed22's rounding of `p` then read as a
+    /// distance from the plane.) Measured on Fixed22: in-plane points near every vertex need
+    /// an absolute term above 2.5 r; points 1e-6 (4.2 r) above a polygon are still told apart
+    /// up to 3.5 r; 3 is the middle.
     #[inline]
     pub(crate) fn in_plane(&self, p: Vec3<T>) -> bool {
         let d = p - self.verts[0];
         let dist = self.normal.dot(d);
-        !(dist.abs() > T::from_f64(4.0) * T::EPSILON * d.max_abs())
+        let tol = if T::RESOLUTION > T::ZERO {
+            T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
+        } else {
+            T::from_f64(4.0) * T::EPSILON * d.max_abs()
+        };
+        !(dist.abs() > tol)
     }
 
     /// `[polygon_lambert]` with precise errors: see [`PolygonLight::lambert`].
@@ -181,9 +202,35 @@ impl<T: Real> ClippedEdge<T> {
     /// comes from the unnormalized `ua x ub`, which keeps its relative accuracy when the arc
     /// nearly spans pi (the polygon seen nearly edge-on), where the cross product of
     /// normalized directions is mostly rounding.
+    /// An arc whose products leave the normal range ([`products_in_range`]) is first scaled
+    /// by a power of two (cold path).
     #[inline]
     pub(crate) fn horizon_angle(&self, k: Vec3<T>) -> T {
-        self.ua.cross(self.d).dot(k).atan2(self.ua.dot(self.ub))
+        let mut y = self.ua.cross(self.d).dot(k);
+        let mut x = self.ua.dot(self.ub);
+        let m = y.abs().max(x.abs());
+        if !products_in_range(m, m) {
+            let Some((g, dot)) = rescaled_products(self.ua, self.ub, self.d) else {
+                return T::ZERO;
+            };
+            (y, x) = (g.dot(k), dot);
+        }
+        y.atan2(x)
+    }
+
+    /// The same edge scaled by a power of two that brings its largest coordinate into [1, 2)
+    /// ([`scaled_to_unit`]); `None` for fixed point and an edge with no finite non-zero
+    /// coordinate. Every term of an edge is scale-free, so this is the cold path of the edge
+    /// terms whose products would leave the normal range.
+    #[inline]
+    pub(crate) fn rescaled(&self) -> Option<Self> {
+        let [ua, ub, d] = scaled_to_unit([self.ua, self.ub, self.d])?;
+        Some(ClippedEdge {
+            ua,
+            ub,
+            d,
+            horizon: self.horizon,
+        })
     }
 }
 
@@ -191,20 +238,181 @@ impl<T: Real> ClippedEdge<T> {
 /// term of Lambert's formula from unnormalized endpoints. Scale-free, so no per-vertex
 /// normalization is needed, and `G` from the edge vector `d` keeps its accuracy for edges
 /// seen nearly end-on.
+///
+/// Where `G` or `ua.ub` would leave the range in which products are normal and finite
+/// ([`products_in_range`]: coordinates beyond about `1/TINY` or below `TINY` in absolute terms,
+/// e.g. f32 configurations scaled by `2^64` or `2^-70`) the edge is first scaled by a power of
+/// two ([`ClippedEdge::rescaled`], exact), on a cold path: the test costs two comparisons.
 #[inline]
 pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: Vec3<T>) -> T {
     let g = ua.cross(d);
-    // Scale to avoid overflow of |G|^2 for large coordinates.
     let m = g.max_abs();
+    let dot = ua.dot(ub);
+    if !products_in_range(m, dot.abs()) {
+        // (Fixed point: never; decided at compile time.)
+        return if T::RESOLUTION > T::ZERO {
+            T::ZERO
+        } else {
+            edge_angle_term_rescaled(ua, ub, d, k)
+        };
+    }
+    edge_angle_finish(g, m, dot, k)
+}
+
+/// [`edge_angle_term`] for an edge whose products leave the normal range: the same term from
+/// the edge scaled by a power of two (0 if it has no finite, non-zero coordinate).
+#[cold]
+#[inline(never)]
+fn edge_angle_term_rescaled<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: Vec3<T>) -> T {
+    match rescaled_products(ua, ub, d) {
+        Some((g, dot)) => edge_angle_finish(g, g.max_abs(), dot, k),
+        None => T::ZERO,
+    }
+}
+
+/// `atan2(|G|, dot) (G . k)/|G|` from `G`, its largest component `m` and `dot = ua.ub`.
+#[inline(always)]
+fn edge_angle_finish<T: Real>(g: Vec3<T>, m: T, dot: T, k: Vec3<T>) -> T {
     if !(m > T::ZERO) || !m.is_finite() {
         return T::ZERO;
     }
+    // Scale to avoid overflow of |G|^2 for large coordinates.
     let (g, d) = g.rescale(m);
     // |G| and 1/|G| together (fixed point: one rsqrt, no division).
     let (s, inv) = g.dot(g).sqrt_rsqrt();
-    let theta = (s * d).atan2(ua.dot(ub));
+    let theta = (s * d).atan2(dot);
     (theta * g.dot(k) * inv).finite_or_zero()
 }
+
+/// `(ua x d, ua.ub)` from the edge scaled by a power of two ([`scaled_to_unit`]): the cold
+/// path of the edge terms whose products leave the normal range. `None` where
+/// [`scaled_to_unit`] has no scale.
+#[inline(always)]
+pub(crate) fn rescaled_products<T: Real>(
+    ua: Vec3<T>,
+    ub: Vec3<T>,
+    d: Vec3<T>,
+) -> Option<(Vec3<T>, T)> {
+    if T::RESOLUTION > T::ZERO {
+        return None;
+    }
+    rescaled_products_float(ua, ub, d)
+}
+
+#[cold]
+#[inline(never)]
+fn rescaled_products_float<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>) -> Option<(Vec3<T>, T)> {
+    let [ua, ub, d] = scaled_to_unit_float([ua, ub, d])?;
+    Some((ua.cross(d), ua.dot(ub)))
+}
+
+/// `true` if products of an edge's coordinates are safe: `m` (the largest component of a
+/// product such as `G = ua x d`) in `[TINY^2, 1/TINY^2]` and `big` (another product's
+/// magnitude, e.g. `|ua.ub|`) at most `1/TINY^2`. Then every product that matters is a normal
+/// float (its rounding relative, as at unit scale) and no square of them overflows, so the
+/// result is the unit-scale result to the last bit or so. Always `true` for fixed point
+/// (one exponent: there is no range to leave, and no rescaling to do).
+#[inline(always)]
+pub(crate) fn products_in_range<T: Real>(m: T, big: T) -> bool {
+    if T::RESOLUTION > T::ZERO {
+        return true;
+    }
+    let lo = T::TINY * T::TINY;
+    let hi = T::ONE / lo;
+    m >= lo && m <= hi && big <= hi
+}
+
+/// `vs` scaled by one power of two, `2^-e` with `2^e <= m < 2^(e+1)` for `m` their largest
+/// component, so that `m` lands in [1, 2): exact (only exponents change), so a configuration
+/// and its scaled copies give the same bits. The cold path of the polygon terms (the terms are
+/// scale-free). `None` if `m` is 0 or not finite, and for fixed point (see
+/// [`products_in_range`]). Cost: a conversion to f64 and back, 6 products per vector.
+#[inline(always)]
+pub(crate) fn scaled_to_unit<T: Real, const K: usize>(vs: [Vec3<T>; K]) -> Option<[Vec3<T>; K]> {
+    // Decided at compile time: no cold path at all in the fixed-point kernels.
+    if T::RESOLUTION > T::ZERO {
+        return None;
+    }
+    scaled_to_unit_float(vs)
+}
+
+#[cold]
+#[inline(never)]
+fn scaled_to_unit_float<T: Real, const K: usize>(vs: [Vec3<T>; K]) -> Option<[Vec3<T>; K]> {
+    let m = vs
+        .iter()
+        .fold(T::ZERO, |acc, v| acc.max(v.max_abs()))
+        .to_f64();
+    if !(m > 0.0) || !m.is_finite() {
+        return None;
+    }
+    // Two factors, each representable in T (f32: 2^-e reaches 2^149).
+    let e = libm::ilogb(m);
+    let e1 = -e / 2;
+    let f1 = T::from_f64(libm::ldexp(1.0, e1));
+    let f2 = T::from_f64(libm::ldexp(1.0, -e - e1));
+    Some(vs.map(|v| v * f1 * f2))
+}
+
+/// The recurrence `T(k)` of Snyder's appendix G for one arc of a boundary: `T(k)` is the
+/// integral from 0 to `x` of `(a cos t + b sin t)^k dt`, `f = a^2 + b^2`, run upward from
+/// `k = n mod 2` in steps of 2. Returns `(T(n mod 2) + ... + T(n - 2), T(n))`. One
+/// implementation for `[phong_polygon]`'s `J` terms (which sum all of them) and Arvo's
+/// moments (which weigh the last apart). With `stop = Some((coef, budget))` it stops after
+/// `T(k)` once `coef c^(k+2) <= budget` (`c = sqrt(f)`) and returns `T(n) = 0` (the tail
+/// dropped: the moments' early termination); with `None` that bound costs nothing.
+///
+/// Cost: 3 products, 2 additions, [`Real::mul_u32`] and [`Real::div_u32`] per step (the
+/// latter a table lookup on `Fixed22`, bit-identical to the division).
+#[cfg(any(feature = "phong", feature = "moments"))]
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn cos_power_sums<T: Real>(
+    n: u32,
+    x: T,
+    cos_x: T,
+    sin_x: T,
+    a: T,
+    b: T,
+    f: T,
+    stop: Option<(T, T)>,
+) -> (T, T) {
+    let g = (a * cos_x + b * sin_x).clamp(-T::ONE, T::ONE);
+    let g2 = g * g;
+    let a2 = a * a;
+    let h = a * sin_x - b * cos_x;
+    let odd = n & 1 == 1;
+    // t = T(k); l = G^(k+1) H, l2 = beta alpha^(k+1): ready for k + 2.
+    let (mut t, mut l, mut l2, mut k) = if odd {
+        (h + b, g2 * h, b * a2, 1)
+    } else {
+        (x, g * h, b * a, 0)
+    };
+    // c^(k+2), for the early-termination bound (only when asked for).
+    let mut cpow = match stop {
+        Some(_) if odd => f * f.sqrt(),
+        Some(_) => f,
+        None => T::ZERO,
+    };
+    let mut sum = T::ZERO;
+    while k < n {
+        sum += t;
+        if let Some((coef, budget)) = stop {
+            if coef * cpow <= budget {
+                return (sum, T::ZERO);
+            }
+            cpow *= f;
+        }
+        k += 2;
+        t = (l + l2 + f.mul_u32(k - 1) * t).div_u32(k);
+        l *= g2;
+        l2 *= a2;
+    }
+    (sum, t)
+}
+
+/// An edge's endpoint directions and lengths and `ua x d`, for [`ApexFan::add`].
+type FanEnds<T> = (Vec3<T>, T, Vec3<T>, T, Vec3<T>);
 
 /// The signed solid angle of a ring clipped to the hemisphere `u.k >= 0`, as a fan of spherical
 /// triangles `(k, a, b)` with apex `k`, one per clipped edge `(a, b)` (Arvo 5.1 sums the same
@@ -225,6 +433,9 @@ impl<T: Real> ApexFan<T> {
     }
 
     /// Adds the triangle (apex, ua, ub) of the clipped edge `e`.
+    ///
+    /// An edge whose products leave the normal range ([`products_in_range`]: lengths below
+    /// `TINY` or beyond `1/TINY`) is first scaled by a power of two (cold path).
     #[inline]
     pub(crate) fn add(&mut self, e: &ClippedEdge<T>) {
         let k = self.apex;
@@ -232,14 +443,36 @@ impl<T: Real> ApexFan<T> {
             self.sum += e.horizon_angle(k);
             return;
         }
-        let (Some((a, la)), Some((b, lb))) =
-            (e.ua.normalize_with_length(), e.ub.normalize_with_length())
-        else {
+        let ends = |e: &ClippedEdge<T>| -> Option<FanEnds<T>> {
+            let (a, la) = e.ua.normalize_with_length()?;
+            let (b, lb) = e.ub.normalize_with_length()?;
+            let l = la.max(lb);
+            products_in_range(la * lb, l * l).then_some((a, la, b, lb, e.ua.cross(e.d)))
+        };
+        let rescaled = || {
+            if T::RESOLUTION > T::ZERO {
+                None // fixed point: nothing to rescale (decided at compile time)
+            } else {
+                Self::rescaled_ends(e)
+            }
+        };
+        let Some((a, la, b, lb, g)) = ends(e).or_else(rescaled) else {
             return;
         };
-        let num = k.dot(e.ua.cross(e.d)) / (la * lb);
+        let num = k.dot(g) / (la * lb);
         let den = T::ONE + a.dot(b) + k.dot(a) + k.dot(b);
         self.sum += T::TWO * num.atan2(den);
+    }
+
+    /// The fan triangle's inputs from the edge scaled by a power of two (cold path; see
+    /// [`ClippedEdge::rescaled`]).
+    #[cold]
+    #[inline(never)]
+    fn rescaled_ends(e: &ClippedEdge<T>) -> Option<FanEnds<T>> {
+        let s = e.rescaled()?;
+        let (a, la) = s.ua.normalize_with_length()?;
+        let (b, lb) = s.ub.normalize_with_length()?;
+        Some((a, la, b, lb, s.ua.cross(s.d)))
     }
 
     /// The signed solid angle (positive for a ring counter-clockwise seen from outside, the
@@ -331,37 +564,60 @@ where
 }
 
 /// Validates a polygon in f64; returns its unit normal (Newell's method).
+///
+/// Works on the vertices relative to vertex 0 scaled by a power of two (exact) that brings
+/// their largest coordinate into [1, 2), so a polygon is accepted or refused alike at every
+/// scale the type represents (the squares below would otherwise underflow or overflow f64
+/// beyond about `2^+-500`).
+///
+/// Planarity: every vertex within `PLANAR_TOL` of the size of the plane of the largest fan
+/// triangle `(v0, v_i, v_i+1)` (the spec's `1e-6`), plus, for a type whose rounding is absolute
+/// (fixed point, [`Real::RESOLUTION`] `r > 0`), what rounding the vertices of a planar polygon
+/// to the type can do: each vertex moves by up to `e = sqrt(3) r/2`, so a rounded vertex is off
+/// the plane through the rounded `v0` by `2e`, and the fitted plane tilts by up to
+/// `4 e size/|c|` (`c` the fan triangle's cross product), which moves a vertex at `size` from
+/// `v0` by `4 e size^2/|c|`: `sqrt(3) r (1 + 2 size^2/|c|)`, taken with a margin of 1.5 for the
+/// second-order terms. Floats add nothing: the spec's tolerance stands.
 fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
-    let n = verts.len();
-    let v = |i: usize| verts[i % n].to_f64();
-    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    // Size: the largest distance from vertex 0 (within a factor 2 of the diameter).
-    let o = v(0);
-    let mut size = 0.0f64;
-    for i in 1..n {
-        let d = sub(v(i), o);
-        size = size.max(libm::sqrt(dot(d, d)));
+    // One copy of the validation for every backend (it runs in f64 anyway).
+    validate_polygon_f64(verts.len(), &|i| verts[i].to_f64(), T::RESOLUTION.to_f64())
+}
+
+/// [`validate_polygon`] on the `n` vertices `vert(i)` (in f64) of a backend of resolution `res`.
+fn validate_polygon_f64(
+    n: usize,
+    vert: &dyn Fn(usize) -> [f64; 3],
+    res: f64,
+) -> Result<[f64; 3], Error> {
+    type V = Vec3<f64>;
+    let at = |i: usize| -> V { Vec3::from_f64(vert(i % n)) };
+    let o = at(0);
+    // The power of two: 2^-e with 2^e <= the largest coordinate of v_i - v0 < 2^(e+1), as two
+    // factors (each within f64's range).
+    let big = (1..n).fold(0.0f64, |m, i| m.max((at(i) - o).max_abs()));
+    if !(big > 0.0) || !big.is_finite() {
+        return Err(Error::ZeroArea);
     }
+    let e = libm::ilogb(big);
+    let scale = (libm::ldexp(1.0, -e / 2), libm::ldexp(1.0, -e - (-e / 2)));
+    // Vertex i relative to vertex 0, scaled.
+    let v = |i: usize| -> V { (at(i) - o) * scale.0 * scale.1 };
+    // Size: the largest distance from vertex 0 (within a factor 2 of the diameter).
+    let size = (1..n).fold(0.0f64, |m, i| m.max(v(i).length()));
     if !(size > 0.0) || !size.is_finite() {
         return Err(Error::ZeroArea);
     }
+    let rel = |i: usize| -> V {
+        let d = v(i);
+        Vec3::new(d.x / size, d.y / size, d.z / size)
+    };
     // A plane first: the largest of the fan cross products (v_i - v0) x (v_i+1 - v0). (Newell's
     // normal cannot serve here: a crossed "bowtie" has a zero Newell normal but is not simple.)
-    let cross3 = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let mut plane = [0.0f64; 3];
+    let mut plane = Vec3::new(0.0, 0.0, 0.0);
     let mut best = 0.0f64;
     for i in 1..n - 1 {
-        let a = sub(v(i), o).map(|x| x / size);
-        let b = sub(v(i + 1), o).map(|x| x / size);
-        let c = cross3(a, b);
-        let l = dot(c, c);
+        let c = rel(i).cross(rel(i + 1));
+        let l = c.dot(c);
         if l > best {
             best = l;
             plane = c;
@@ -371,13 +627,17 @@ fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
     if !(best > 1e-28) {
         return Err(Error::ZeroArea);
     }
-    let plane = plane.map(|x| x / libm::sqrt(best));
+    let root = libm::sqrt(best);
+    let plane = Vec3::new(plane.x / root, plane.y / root, plane.z / root);
+    // The rounding of the vertices (fixed point; see above), in the scaled coordinates.
+    let res = res * scale.0 * scale.1;
+    let tol = PLANAR_TOL * size + 1.5 * libm::sqrt(3.0) * res * (1.0 + 2.0 / root);
     for i in 1..n {
-        if libm::fabs(dot(plane, sub(v(i), o))) > PLANAR_TOL * size {
+        if libm::fabs(plane.dot(v(i))) > tol {
             return Err(Error::NotPlanar);
         }
     }
-    let unit = plane;
+    let unit = plane.to_f64();
     // Simplicity in the plane: drop the dominant axis of the normal.
     let ax = unit.map(libm::fabs);
     let (ia, ib) = if ax[0] >= ax[1] && ax[0] >= ax[2] {
@@ -388,7 +648,7 @@ fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
         (0, 1)
     };
     let p2 = |i: usize| {
-        let d = sub(v(i), o);
+        let d = v(i).to_f64();
         [d[ia] / size, d[ib] / size]
     };
     for i in 0..n {
@@ -418,20 +678,19 @@ fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
         }
     }
     // Newell's normal (twice the area vector, over size^2) for the area and the orientation.
-    let mut nn = [0.0f64; 3];
+    let mut nn = Vec3::new(0.0f64, 0.0, 0.0);
     for i in 0..n {
-        let a = sub(v(i), o).map(|x| x / size);
-        let b = sub(v(i + 1), o).map(|x| x / size);
-        nn[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        nn[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        nn[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        let (a, b) = (rel(i), rel(i + 1));
+        nn.x += (a.y - b.y) * (a.z + b.z);
+        nn.y += (a.z - b.z) * (a.x + b.x);
+        nn.z += (a.x - b.x) * (a.y + b.y);
     }
-    let len = libm::sqrt(dot(nn, nn));
+    let len = nn.length();
     // A simple polygon of relative area below 1e-14 is zero area to f64.
     if !(len > 1e-14) {
         return Err(Error::ZeroArea);
     }
-    Ok(nn.map(|x| x / len))
+    Ok(nn.to_f64().map(|x| x / len))
 }
 
 fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {

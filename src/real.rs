@@ -79,6 +79,12 @@ pub trait Real:
     /// `Fixed22` and [`Fast32`] treats vectors below it as zero; f32's and f64's give every
     /// finite nonzero vector a direction: see [`Real::normalize3`].)
     const TINY: Self;
+    /// The absolute resolution of the type: the spacing of its values wherever they lie, for
+    /// a type whose rounding is absolute. 0 for the float types (their rounding is relative:
+    /// see [`Real::EPSILON`]); [`Fixed22::DELTA`] (`2^-22`) for fixed point. Tolerances that
+    /// must cover the rounding of the inputs themselves add a few of it (the polygon's
+    /// planarity and in-plane tests).
+    const RESOLUTION: Self = Self::ZERO;
     /// The largest Phong exponent this scalar type supports (beyond it a [`crate::PhongLobe`]
     /// constructor returns [`crate::Error::ExponentOutOfRange`]).
     const MAX_PHONG_EXPONENT: u32 = crate::lobe::MAX_EXPONENT;

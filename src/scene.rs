@@ -487,31 +487,28 @@ fn cap_cos_sin<T: Real>(l: &CapLight<T>) -> (T, T) {
     l.cos_sin_sigma()
 }
 
+/// The culling geometry is f64 [`Vec3`] arithmetic (the crate's one vector type; the
+/// polygon's validation uses it too).
+type V64 = Vec3<f64>;
+
+/// `v` as a [`V64`].
+fn w(v: [f64; 3]) -> V64 {
+    Vec3::from_f64(v)
+}
+
+/// `v/|v|`, or `None` for a zero or non-finite length.
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
-    let l = libm::sqrt(dot(v, v));
+    let l = w(v).length();
     if l > 0.0 && l.is_finite() {
-        Some([v[0] / l, v[1] / l, v[2] / l])
+        Some(v.map(|x| x / l))
     } else {
         None
     }
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// The angle between two unit vectors, accurate at both ends.
-fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let c = [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ];
-    libm::atan2(libm::sqrt(dot(c, c)), dot(a, b))
+/// The angle between two vectors (any lengths), accurate at both ends.
+fn angle(a: V64, b: V64) -> f64 {
+    libm::atan2(a.cross(b).length(), a.dot(b))
 }
 
 fn reach_of<T: Real, const N: usize>(light: &SceneLight<T, N>) -> Reach {
@@ -549,13 +546,12 @@ fn reach_of<T: Real, const N: usize>(light: &SceneLight<T, N>) -> Reach {
                     c[k] += v[k] / vs.len() as f64;
                 }
             }
-            let r = vs.iter().fold(0.0f64, |m, v| {
-                let d = sub(v.to_f64(), c);
-                m.max(libm::sqrt(dot(d, d)))
-            });
+            let r = vs
+                .iter()
+                .fold(0.0f64, |m, v| m.max((w(v.to_f64()) - w(c)).length()));
             let c32 = v32(c);
             // The sphere about the rounded centre still contains every vertex.
-            let r = r + libm::sqrt(dot(sub(v64(c32), c), sub(v64(c32), c)));
+            let r = r + (w(v64(c32)) - w(c)).length();
             Reach::Bounded {
                 center: c32,
                 radius: f32_of(r, true),
@@ -590,11 +586,11 @@ fn beam_reaches(b: &Beam, o: &ObjectBounds) -> bool {
         f64::from(b.z_off),
         f64::from(b.half_angle),
     );
-    let d = sub(o.center, origin);
-    let dist = libm::sqrt(dot(d, d));
+    let d = w(o.center) - w(origin);
+    let dist = d.length();
     let slack = MARGIN * (dist + o.radius) + MARGIN;
     // The stored direction is unit to f32 rounding (6e-8): far inside the margin.
-    let z = dot(d, dir);
+    let z = d.dot(w(dir));
     if z + o.radius < z_on - slack || z - o.radius > z_off + slack {
         return false;
     }
@@ -602,7 +598,7 @@ fn beam_reaches(b: &Beam, o: &ObjectBounds) -> bool {
         return true;
     }
     // Outside the cone: the angle to the object's centre minus its angular radius.
-    let phi = angle([d[0] / dist, d[1] / dist, d[2] / dist], dir);
+    let phi = angle(d, w(dir));
     let spread = libm::asin((o.radius / dist).min(1.0));
     phi - spread <= half_angle + MARGIN
 }
@@ -614,18 +610,18 @@ fn horizon_reaches(r: &Reach, o: &ObjectBounds) -> bool {
     match *r {
         Reach::Everywhere => true,
         Reach::Direction { dir, sin_s } => {
-            let phi = angle(v64(dir), axis);
+            let phi = angle(w(v64(dir)), w(axis));
             libm::cos((phi - half).max(0.0)) > -f64::from(sin_s) - MARGIN
         }
         Reach::Bounded { center, radius } => {
             let (center, radius) = (v64(center), f64::from(radius));
-            let d = sub(center, o.center);
-            let dist = libm::sqrt(dot(d, d));
+            let d = w(center) - w(o.center);
+            let dist = d.length();
             let slack = MARGIN * (dist + radius + o.radius);
             if dist <= radius + o.radius + slack {
                 return true;
             }
-            let phi = angle([d[0] / dist, d[1] / dist, d[2] / dist], axis);
+            let phi = angle(d, w(axis));
             dist * libm::cos((phi - half).max(0.0)) + radius + o.radius > -slack
         }
     }

@@ -734,20 +734,10 @@ fn peaks_f64_vs_brute_force() {
     ]);
 }
 
-/// `p` within 16 f32 ULPs (relative to its offset from the origin corner) of the
-/// parallelogram's plane.
-fn in_plane_to_f32(c: &PeakCase) -> bool {
-    let [o, eu, ev] = c.g;
-    let q0 = sub(o, c.p);
-    let h = dot(q0, normalize(cross(eu, ev))).abs();
-    h <= 16.0 * EPS_F32 * q0.iter().fold(0.0f64, |m, x| m.max(x.abs()))
-}
-
-fn peaks_lowp<T: Real>(
-    name: &str,
-    bounds: LowpBounds,
-    plane_skips: &mut usize,
-) -> (Bounded, Bounded) {
+/// Every case is compared: the in-plane parallelogram peak follows the definition (it used
+/// to answer 0 in the plane, a jump the low-precision types saw wherever they rounded `p`
+/// into the plane, so those cases were skipped).
+fn peaks_lowp<T: Real>(name: &str, bounds: LowpBounds) -> (Bounded, Bounded) {
     let mut rng = Rng::new(0x9ea1);
     let mut line = Bounded::new(&format!("line_phong_peak {name} vs f64"), bounds);
     let mut rect = Bounded::new(&format!("rect_phong_peak {name} vs f64"), bounds);
@@ -778,16 +768,6 @@ fn peaks_lowp<T: Real>(
                 } else {
                     lib_line_peak::<T>(&c, m)
                 } {
-                    // In the plane of the parallelogram to T's precision, where the library
-                    // answers 0 today (against the definition: see
-                    // `rect_peak_in_plane_follows_the_definition`, ignored until src/line.rs
-                    // is fixed), so it jumps at the plane; T resolves the plane only to its own
-                    // rounding. With the fix the value is continuous there and this skip no
-                    // longer applies (it needs `g == 0`).
-                    Ok(g) if is_rect && g == 0.0 && want != 0.0 && in_plane_to_f32(&c) => {
-                        *plane_skips += 1;
-                        continue;
-                    }
                     Ok(g) => g,
                     Err(Error::PointOnSegment) if !is_rect => {
                         assert_on_segment_to_f32_precision(c.g[0], c.g[1], c.p, &c.describe());
@@ -829,12 +809,8 @@ fn peaks_lowp<T: Real>(
 
 #[test]
 fn peaks_f32_and_fast32_vs_f64() {
-    let (mut skip32, mut skipf) = (0, 0);
-    let (l32, r32) = peaks_lowp::<f32>("f32", BOUNDS_F32, &mut skip32);
-    let (lf, rf) = peaks_lowp::<Fast32>("Fast32", BOUNDS_FAST32, &mut skipf);
-    println!(
-        "[maxerr] rect_phong_peak: p in the plane to f32 precision (0 there today, see rect_peak_in_plane_follows_the_definition; the f64 model resolves the plane): {skip32} f32 and {skipf} Fast32 evaluations not compared"
-    );
+    let (l32, r32) = peaks_lowp::<f32>("f32", BOUNDS_F32);
+    let (lf, rf) = peaks_lowp::<Fast32>("Fast32", BOUNDS_FAST32);
     check_bounded(&[&l32, &r32, &lf, &rf]);
 }
 
@@ -1044,13 +1020,28 @@ fn semantics() {
         rect.phong_peak(&lobe, Vec3::new(0.0, 0.0, 0.0), Vec3::new(0.2, 0.3, 1.0)),
         1.0
     );
-    // In the plane: 0 (seen edge-on), inside or outside it.
-    for q in [Vec3::new(0.0, 0.0, 2.0), Vec3::new(5.0, 0.0, 2.0)] {
+    // In the plane, the definition (the best over the light's points, all seen in the
+    // plane): from inside every in-plane direction reaches the light; from outside only those
+    // toward it. (Polygon models give 0 there; a peak is not one.)
+    let x = Vec3::new(1.0, 0.0, 0.0);
+    for (q, r, want) in [
+        (Vec3::new(0.0, 0.0, 2.0), x, 1.0),
+        (Vec3::new(5.0, 0.0, 2.0), x, 0.0),
+        (Vec3::new(5.0, 0.0, 2.0), -x, 1.0),
+    ] {
         assert_eq!(
-            rect.try_phong_peak(&lobe, q, Vec3::new(1.0, 0.0, 0.0)),
-            Ok(0.0)
+            rect.try_phong_peak(&lobe, q, r),
+            Ok(want),
+            "p = {q:?}, r = {r:?}"
         );
     }
+    // Out of the plane by r's tilt: (cos 0.3)^m from outside, in the plane.
+    let tilted = Vec3::new(-0.3f64.cos(), 0.0, 0.3f64.sin());
+    let got = rect.phong_peak(&lobe, Vec3::new(5.0, 0.0, 2.0), tilted);
+    assert!(
+        (got - 0.3f64.cos().powi(lobe.exponent() as i32)).abs() < 1e-13,
+        "{got}"
+    );
     // Behind: r away from the light.
     assert_eq!(rect.phong_peak(&lobe, Vec3::new(0.0, 0.0, 0.0), -z), 0.0);
     // From the back side it is lit too (two-sided).
@@ -1190,7 +1181,6 @@ fn adversarial_inputs_never_panic_or_give_nan() {
 /// r = (-1, 0.2, 0), origin (-1, -1, 2), eu = (2, 0, 0), ev = (0, 2, 0), m = 8 gives 1 (r
 /// points at the light); then random in-plane configurations against the brute force.
 #[test]
-#[ignore = "needs fix in src/line.rs: ParallelogramLight::try_phong_peak returns 0 for p in the parallelogram's plane (outside it); the definition gives the largest ((u.r)+)^m over the light's points, e.g. 1 for p = (3, 0, 2), r = (-1, 0.2, 0), origin (-1, -1, 2), eu = (2, 0, 0), ev = (0, 2, 0), m = 8: in the plane, take the best direction over the parallelogram's edges as seen from p (the 2D case of the segment peak) instead of returning 0"]
 fn rect_peak_in_plane_follows_the_definition() {
     let light = ParallelogramLight::<f64>::new(
         Vec3::new(-1.0, -1.0, 2.0),

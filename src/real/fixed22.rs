@@ -226,6 +226,7 @@ impl Real for Fixed22 {
     /// 2^-16 (64 LSB): a vector whose largest component is below it has no reliable
     /// direction (fewer than 6 significant bits) and counts as zero.
     const TINY: Self = Fixed22::from_bits(1 << (FRAC - 16));
+    const RESOLUTION: Self = Fixed22::DELTA;
     const MAX_PHONG_EXPONENT: u32 = 255;
     const COORDINATE_LIMIT: f64 = Fixed22::COORDINATE_LIMIT;
 
