@@ -540,6 +540,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// 1 division and `m/2` recurrence steps of ~6 operations (plus one Van Oosterom-Strackee
     /// triangle for even `m`). Fallback: 0 for a zero or non-finite input, `m` out of range, or
     /// `p` in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-axial_moment: target/accuracy/model-axial_moment.md -->
+    /// Measured: f64 within 1.5e-13 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 7.0e-7 (ill-conditioned: 7.9e-7; near boundary: 1.8e-4), Fast32 1.1e-4
+    /// (ill-conditioned: 2.0e-4); 19 250 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-axial_moment -->
     #[inline]
     pub fn axial_moment(&self, p: Vec3<T>, w: Vec3<T>, m: u32) -> T {
         self.try_axial_moment(p, w, m).unwrap_or(T::ZERO)
@@ -601,6 +607,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// Accuracy: see `tests/moments.rs`. Cost: that of [`PolygonLight::axial_moment`] with one
     /// more recurrence step per edge. Fallback: 0 for a zero or non-finite input, `m` out of
     /// range, or `p` in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-double_axis_moment: target/accuracy/model-double_axis_moment.md -->
+    /// Measured: f64 within 5.1e-14 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 4.7e-7 (ill-conditioned: 2.8e-7; near boundary: 4.6e-5), Fast32 7.4e-5
+    /// (ill-conditioned: 7.0e-5); 19 259 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-double_axis_moment -->
     #[inline]
     pub fn double_axis_moment(&self, p: Vec3<T>, w: Vec3<T>, v: Vec3<T>, m: u32) -> T {
         self.try_double_axis_moment(p, w, v, m).unwrap_or(T::ZERO)
@@ -650,6 +662,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// the ring clipped to two planes (at most about twice as many arcs), plus the clipping
     /// (a few multiply-adds per vertex). Fallback: 0 for a zero or non-finite input, `m` out
     /// of range, or `p` in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-directional_luminaire: target/accuracy/model-directional_luminaire.md -->
+    /// Measured: f64 within 4.2e-12 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 1.0e-6 (ill-conditioned: 3.2e-7; near boundary: 5.1e-5), Fast32 8.0e-5
+    /// (ill-conditioned: 1.0e-5); 18 882 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-directional_luminaire -->
     #[inline]
     pub fn directional_luminaire(&self, p: Vec3<T>, n: Vec3<T>, axis: Vec3<T>, m: u32) -> T {
         self.try_directional_luminaire(p, n, axis, m)
@@ -685,6 +703,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// Accuracy and cost: as [`PolygonLight::directional_luminaire`]. Fallback: 0 for a zero or
     /// non-finite input, `m` out of range, or `p` in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-glossy_reflection: target/accuracy/model-glossy_reflection.md -->
+    /// Measured: f64 within 1.9e-12 of its reference (the independent quadrature, h <= 1e-8);
+    /// against f64, f32 3.6e-7 (ill-conditioned: 1.9e-7; near boundary: 6.4e-5), Fast32 2.0e-5
+    /// (ill-conditioned: 1.4e-5); 18 890 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-glossy_reflection -->
     #[inline]
     pub fn glossy_reflection(&self, p: Vec3<T>, n: Vec3<T>, e: Vec3<T>, m: u32) -> T {
         self.try_glossy_reflection(p, n, e, m).unwrap_or(T::ZERO)
@@ -715,6 +739,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// Accuracy and cost: as [`PolygonLight::directional_luminaire`]. Fallback: 0 for a zero or
     /// non-finite input, `m` out of range, or `p` in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-glossy_transmission: target/accuracy/model-glossy_transmission.md -->
+    /// Measured: f64 within 1.9e-12 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 1.9e-7 (ill-conditioned: 2.8e-7; near boundary: 9.1e-6), Fast32 1.3e-5
+    /// (ill-conditioned: 8.1e-6); 18 855 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-glossy_transmission -->
     #[inline]
     pub fn glossy_transmission(&self, p: Vec3<T>, n: Vec3<T>, e: Vec3<T>, m: u32) -> T {
         self.try_glossy_transmission(p, n, e, m).unwrap_or(T::ZERO)
@@ -765,6 +795,11 @@ pub fn try_lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> Result
 ///
 /// Accuracy: see `tests/moments.rs`. Cost: 1 cross product, 1 sqrt, 1 atan2 (even `m`) and
 /// `m/2` steps of ~8 operations. Fallback: 0 for a zero or non-finite input or `m` out of range.
+///
+/// <!-- BEGIN acc-lune_normalization: target/accuracy/model-lune_normalization.md -->
+/// Measured: f64 within 4.4e-14 of its reference (the independent quadrature); against f64,
+/// f32 3.4e-7, Fast32 1.3e-5; 6 400 cases in all (`docs/accuracy.md`).
+/// <!-- END acc-lune_normalization -->
 #[inline]
 pub fn lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> T {
     try_lune_normalization(w, v, m).unwrap_or(T::ZERO)

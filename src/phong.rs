@@ -78,8 +78,15 @@ impl<T: Real> HemisphereLight<T> {
     /// `[phong_hemi_const]`: Phong illumination from the constant-weighted hemisphere (Snyder
     /// eq. 14), normalized (in [0, 1]); `r` is the reflection direction (any length).
     ///
-    /// Accuracy: see the README's table. Cost: 1 normalization, 1 cross product, 1 sqrt,
+    /// Accuracy: measured, below. Cost: 1 normalization, 1 cross product, 1 sqrt,
     /// (1 atan2 for even m), and `m/2` recurrence steps. Fallback: 0 for a zero or non-finite `r`.
+    ///
+    /// <!-- BEGIN acc-phong_hemi_const: target/accuracy/model-phong_hemi_const.md -->
+    /// Measured: f64 within 1.1e-13 of its reference (the independent quadrature); against f64,
+    /// f32 2.0e-6 at m = 255 (ill-conditioned: 1.3e-6 at m = 255), Fast32 1.2e-4 at m = 255
+    /// (ill-conditioned: 1.1e-4 at m = 255), Fixed22 9.9e-5 at m = 0; 88 657 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-phong_hemi_const -->
     #[inline]
     pub fn phong_const(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
         let Some(r) = r.normalize() else {
@@ -100,9 +107,15 @@ impl<T: Real> HemisphereLight<T> {
     /// `[phong_hemi_cos]`: Phong illumination from the cosine-weighted hemisphere (Snyder
     /// eq. 15), in [0, 1].
     ///
-    /// Accuracy: see the README's table. Cost: that of [`HemisphereLight::phong_const`] plus a
+    /// Accuracy: measured, below. Cost: that of [`HemisphereLight::phong_const`] plus a
     /// power by squaring.
     /// Fallback: 0 for a zero or non-finite `r`.
+    ///
+    /// <!-- BEGIN acc-phong_hemi_cos: target/accuracy/model-phong_hemi_cos.md -->
+    /// Measured: f64 within 5.6e-14 of its reference (the independent quadrature); against f64,
+    /// f32 4.9e-7 at m = 255, Fast32 2.8e-5 at m = 255, Fixed22 7.7e-6 at m = 255; 88 657 cases
+    /// in all (`docs/accuracy.md`).
+    /// <!-- END acc-phong_hemi_cos -->
     #[inline]
     pub fn phong_cos(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
         let Some(r) = r.normalize() else {
@@ -239,9 +252,16 @@ fn phong_cap_from_angle<T: Real>(m: u32, c: T, s: T, cs: T, ss: T) -> T {
 impl<T: Real> CapLight<T> {
     /// `[phong_cap]`: Phong illumination from the cap (Snyder eq. 24), in [0, 1].
     ///
-    /// Accuracy: see the README's table. Cost: 1 normalization, 1 cross product, 1 sqrt; if the
+    /// Accuracy: measured, below. Cost: 1 normalization, 1 cross product, 1 sqrt; if the
     /// cap crosses the horizon of `r` also 1 sqrt, 1-2 atan2, 1 division; then `m - 1`
     /// recurrence steps of ~8 operations. Fallback: 0 for a zero or non-finite `r`.
+    ///
+    /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
+    /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,
+    /// f32 2.0e-6 at m = 255 (ill-conditioned: 2.6e-6 at m = 255), Fast32 1.2e-4 at m = 255
+    /// (ill-conditioned: 1.2e-4 at m = 255), Fixed22 1.6e-4 at m = 0; 200 854 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-phong_cap -->
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
         let Some(r) = r.normalize() else {
@@ -271,6 +291,13 @@ impl<T: Real> SphereLight<T> {
     ///
     /// Cost: that of [`CapLight::phong`] plus 1 normalization, 1 division, 1 sqrt.
     /// Fallback: 0 for a point inside or on the sphere or a zero or non-finite input.
+    ///
+    /// <!-- BEGIN acc-phong_sphere: target/accuracy/model-phong_sphere.md -->
+    /// Measured: f64 within 7.9e-14 of its reference (the independent quadrature); against f64,
+    /// f32 1.8e-6 at m = 255 (ill-conditioned: 1.2e-5 at m = 255), Fast32 7.4e-5 at m = 255
+    /// (ill-conditioned: 3.5e-4 at m = 255), Fixed22 4.3e-4 at m = 255; 62 580 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-phong_sphere -->
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
         self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
@@ -422,7 +449,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[phong_polygon]`: Phong illumination at `p` from the polygon (Snyder eq. 25), clipped to
     /// the hemisphere around `r`, in [0, 1].
     ///
-    /// Accuracy: see the README's table. Cost per clipped edge: 2 cross products, 3
+    /// Accuracy: measured, below. Cost per clipped edge: 2 cross products, 3
     /// normalizations (the edge's end vertex, reused as the next edge's start; the edge's
     /// plane normal; the `(cos x, sin x)` pair), ~5 dot products, 1 atan2 (`x` for odd m, the
     /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
@@ -431,6 +458,14 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
     /// scaled by a power of two first, on a cold path that costs nothing when not taken.
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-phong_polygon: target/accuracy/model-phong_polygon.md -->
+    /// Measured: f64 within 1.6e-13 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 1.4e-6 at m = 255 (ill-conditioned: 8.6e-7 at m = 255; near boundary:
+    /// 1.2e-4 at m = 255), Fast32 5.2e-5 at m = 255 (ill-conditioned: 3.1e-5 at m = 255; near
+    /// boundary: 3.3e-4 at m = 0), Fixed22 2.0e-5 at m = 255; 61 089 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-phong_polygon -->
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
         self.try_phong(lobe, p, r).unwrap_or(T::ZERO)

@@ -157,10 +157,17 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[polygon_lambert]`: exact Lambertian irradiance (normalized, in [0, 1]) at `p` with
     /// normal `n`, the polygon clipped to the horizon of `n`.
     ///
-    /// Accuracy: see the README's table. Cost per edge above the horizon: 2 cross products,
+    /// Accuracy: measured, below. Cost per edge above the horizon: 2 cross products,
     /// 2 dot products, 1 sqrt, 1 atan2, 1 division (no per-vertex normalization); per horizon
     /// crossing: a few multiply-adds. Fallback: 0 for a zero or non-finite input, and 0 when
     /// `p` is in the polygon's plane.
+    ///
+    /// <!-- BEGIN acc-polygon_lambert: target/accuracy/model-polygon_lambert.md -->
+    /// Measured: f64 within 1.4e-14 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 5.4e-7 (ill-conditioned: 2.9e-6; near boundary: 4.4e-4), Fast32 1.1e-5
+    /// (ill-conditioned: 3.9e-6; near boundary: 4.4e-4), Fixed22 1.8e-4; 57 939 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-polygon_lambert -->
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
         self.try_lambert(p, n).unwrap_or(T::ZERO)

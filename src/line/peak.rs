@@ -28,6 +28,13 @@ impl<T: Real> LineLight<T> {
     /// the segment frame (1 normalization, 1 division, 2 cross products, 1-3 sqrt), 2
     /// normalizations, 1 cross product, ~6 dot products, 1 sqrt, 1 `ln`, 1 `exp`. Fallback: 0
     /// for a non-finite or zero input or a point on the segment.
+    ///
+    /// <!-- BEGIN acc-line_phong_peak: target/accuracy/model-line_phong_peak.md -->
+    /// Measured: f64 within 4.7e-9 of its reference (brute force, h = 1e-9 rotated); against f64,
+    /// f32 4.3e-7 (capped: 2.3e-3; ill-conditioned: 1.7e-6; near boundary: 2.6e-5; unresolved:
+    /// 6.6e-1), Fast32 6.8e-6 (capped: 2.7e-3; ill-conditioned: 5.9e-6; near boundary: 2.6e-5;
+    /// unresolved: 6.6e-1); 10 053 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-line_phong_peak -->
     #[inline]
     pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
         self.try_phong_peak(lobe, p, r).unwrap_or(T::ZERO)
@@ -244,6 +251,12 @@ impl<T: Real> ParallelogramLight<T> {
     /// the hit test; if it misses, per edge 2 normalizations, 2 cross products, ~5 dot
     /// products, 1-2 sqrt; then 1 `ln`, 1 `exp` (none when it hits). Fallback: 0 for a
     /// non-finite or zero input.
+    ///
+    /// <!-- BEGIN acc-rect_phong_peak: target/accuracy/model-rect_phong_peak.md -->
+    /// Measured: f64 within 7.0e-10 of its reference (brute force, m = 2^16, 2^20); against f64,
+    /// f32 2.9e-7 (ill-conditioned: 5.0e-6; near boundary: 3.3e-7), Fast32 6.6e-6
+    /// (ill-conditioned: 4.3e-6; near boundary: 8.2e-7); 6 882 cases in all (`docs/accuracy.md`).
+    /// <!-- END acc-rect_phong_peak -->
     #[inline]
     pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
         self.try_phong_peak(lobe, p, r).unwrap_or(T::ZERO)
