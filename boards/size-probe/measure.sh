@@ -3,6 +3,9 @@
 # and prints a markdown table of .text bytes above the empty probe (the runtime alone).
 # Usage: boards/size-probe/measure.sh [out.md]
 set -euo pipefail
+# The output path as given, relative to the caller's directory (before the cd below).
+out=${1:-/dev/stdout}
+case "$out" in /*) ;; *) out="$PWD/$out" ;; esac
 cd "$(dirname "$0")"
 unset CARGO_TARGET_DIR
 rustup component add llvm-tools >/dev/null 2>&1 || true
@@ -13,7 +16,6 @@ text_of() { # target features
   cargo build -q --release --target "$target" --no-default-features ${features:+--features "$features"}
   "$size_tool" -A "target/$target/release/size-probe" | awk '$1 == ".text" { print $2 }'
 }
-out=${1:-/dev/stdout}
 {
   echo "| feature set | thumbv7em (M4F, f32) .text | thumbv6m (M0, f32 soft-float) .text | thumbv6m (M0, Fixed22) .text |"
   echo "|---|---|---|---|"
