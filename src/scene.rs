@@ -112,7 +112,9 @@ struct Beam {
 }
 
 /// To f32, rounding away from the reachable set's inside: `up` rounds up (radii, cut-off
-/// distances, angles), otherwise down.
+/// distances, angles), otherwise down. (Used by the bounds of caps, spheres, polygons and
+/// shaped lights: unused, and not compiled, without those families.)
+#[cfg(any(feature = "cap", feature = "polygon", feature = "shaping"))]
 fn f32_of(x: f64, up: bool) -> f32 {
     let y = x as f32;
     let y64 = f64::from(y);
