@@ -83,7 +83,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-phong_hemi_const: target/accuracy/model-phong_hemi_const.md -->
     /// Measured: f64 within 1.1e-13 of its reference (the independent quadrature); against f64,
-    /// f32 2.0e-6 at m = 255 (ill-conditioned: 1.3e-6 at m = 255), Fast32 1.2e-4 at m = 255
+    /// f32 2.0e-6 at m = 255 (ill-conditioned: 1.0e-6 at m = 255), Fast32 1.2e-4 at m = 255
     /// (ill-conditioned: 1.1e-4 at m = 255), Fixed22 9.9e-5 at m = 0; 88 657 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_hemi_const -->
@@ -112,7 +112,7 @@ impl<T: Real> HemisphereLight<T> {
     /// Fallback: 0 for a zero or non-finite `r`.
     ///
     /// <!-- BEGIN acc-phong_hemi_cos: target/accuracy/model-phong_hemi_cos.md -->
-    /// Measured: f64 within 5.6e-14 of its reference (the independent quadrature); against f64,
+    /// Measured: f64 within 5.5e-14 of its reference (the independent quadrature); against f64,
     /// f32 4.9e-7 at m = 255, Fast32 2.8e-5 at m = 255, Fixed22 7.7e-6 at m = 255; 88 657 cases
     /// in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_hemi_cos -->
@@ -258,9 +258,9 @@ impl<T: Real> CapLight<T> {
     ///
     /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
     /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,
-    /// f32 2.0e-6 at m = 255 (ill-conditioned: 2.6e-6 at m = 255), Fast32 1.2e-4 at m = 255
-    /// (ill-conditioned: 1.2e-4 at m = 255), Fixed22 1.6e-4 at m = 0; 200 854 cases in all
-    /// (`docs/accuracy.md`).
+    /// f32 2.0e-6 at m = 255 (high m: 2.2e-6 at m = 255; ill-conditioned: 2.5e-6 at m = 255),
+    /// Fast32 1.2e-4 at m = 255 (ill-conditioned: 1.2e-4 at m = 255), Fixed22 1.6e-4 at m = 0;
+    /// 200 854 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_cap -->
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
@@ -294,7 +294,7 @@ impl<T: Real> SphereLight<T> {
     ///
     /// <!-- BEGIN acc-phong_sphere: target/accuracy/model-phong_sphere.md -->
     /// Measured: f64 within 7.9e-14 of its reference (the independent quadrature); against f64,
-    /// f32 1.8e-6 at m = 255 (ill-conditioned: 1.2e-5 at m = 255), Fast32 7.4e-5 at m = 255
+    /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.4e-5 at m = 255
     /// (ill-conditioned: 3.5e-4 at m = 255), Fixed22 4.3e-4 at m = 255; 62 580 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_sphere -->
@@ -460,8 +460,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane.
     ///
     /// <!-- BEGIN acc-phong_polygon: target/accuracy/model-phong_polygon.md -->
-    /// Measured: f64 within 1.6e-13 of its reference (the independent quadrature, adversarial);
-    /// against f64, f32 1.4e-6 at m = 255 (ill-conditioned: 8.6e-7 at m = 255; near boundary:
+    /// Measured: f64 within 3.1e-13 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 1.6e-6 at m = 255 (ill-conditioned: 1.8e-6 at m = 255; near boundary:
     /// 1.2e-4 at m = 255), Fast32 5.2e-5 at m = 255 (ill-conditioned: 3.1e-5 at m = 255; near
     /// boundary: 3.3e-4 at m = 0), Fixed22 2.0e-5 at m = 255; 61 089 cases in all
     /// (`docs/accuracy.md`).

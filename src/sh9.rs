@@ -279,8 +279,8 @@ impl<T: Real> Sh9Irradiance<T> {
     /// multiply-adds. Fallback: black for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
-    /// Measured: f64 within 1.3e-15 of its reference (the independent quadrature); against f64,
-    /// f32 5.7e-7, Fast32 1.2e-5, Fixed22 3.1e-6; 309 210 cases in all (`docs/accuracy.md`).
+    /// Measured: f64 within 1.8e-15 of its reference (the independent quadrature); against f64,
+    /// f32 6.8e-7, Fast32 1.2e-5, Fixed22 3.1e-6; 309 210 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sh9_irradiance -->
     #[inline]
     pub fn irradiance(&self, n: Vec3<T>) -> Rgb<T> {
