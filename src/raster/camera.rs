@@ -1,0 +1,336 @@
+//! Model transforms ([`Affine`]), projections and the [`Camera`]: world to clip space, clip to
+//! screen.
+
+use super::*;
+
+/// An affine model transform `p -> M p + t`; normals go through the cofactor matrix of `M`
+/// (the inverse transpose up to a positive scale), so they stay perpendicular to surfaces
+/// under any invertible `M`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Affine<T> {
+    /// Rows of `M`.
+    pub(super) m: [Vec3<T>; 3],
+    pub(super) t: Vec3<T>,
+    /// Rows of `sign(det M) cof(M)`.
+    pub(super) nm: [Vec3<T>; 3],
+}
+
+impl<T: Real> Affine<T> {
+    pub(super) fn from_parts(m: [Vec3<T>; 3], t: Vec3<T>) -> Self {
+        let c = [m[1].cross(m[2]), m[2].cross(m[0]), m[0].cross(m[1])];
+        let det = m[0].dot(c[0]);
+        let s = if det < T::ZERO { -T::ONE } else { T::ONE };
+        // M^-1 has the columns c[i]/det, so M^-T (the normal matrix) has them as rows.
+        let nm = [c[0] * s, c[1] * s, c[2] * s];
+        Affine { m, t, nm }
+    }
+
+    /// The identity.
+    pub fn identity() -> Self {
+        let (o, l) = (T::ZERO, T::ONE);
+        Self::from_parts(
+            [Vec3::new(l, o, o), Vec3::new(o, l, o), Vec3::new(o, o, l)],
+            Vec3::new(o, o, o),
+        )
+    }
+
+    /// A translation by `t`.
+    ///
+    /// # Errors
+    /// [`RasterError::Model`] with [`Error::NotFinite`] (`"t"`).
+    pub fn translation(t: Vec3<T>) -> Result<Self, RasterError> {
+        if !t.is_finite() {
+            return Err(Error::NotFinite("t").into());
+        }
+        let mut a = Self::identity();
+        a.t = t;
+        Ok(a)
+    }
+
+    /// A scale by `s` per axis (non-zero, finite).
+    ///
+    /// # Errors
+    /// [`RasterError::Model`] with [`Error::NotFinite`] (`"scale"`) or
+    /// [`RasterError::BadParameter`] (`"scale"`) for a zero component.
+    pub fn scale(s: Vec3<T>) -> Result<Self, RasterError> {
+        if !s.is_finite() {
+            return Err(Error::NotFinite("scale").into());
+        }
+        if s.x == T::ZERO || s.y == T::ZERO || s.z == T::ZERO {
+            return Err(RasterError::BadParameter("scale"));
+        }
+        let o = T::ZERO;
+        Ok(Self::from_parts(
+            [
+                Vec3::new(s.x, o, o),
+                Vec3::new(o, s.y, o),
+                Vec3::new(o, o, s.z),
+            ],
+            Vec3::new(o, o, o),
+        ))
+    }
+
+    /// A rotation by `angle` (radians, right-handed) about the unit axis `axis` (any length).
+    ///
+    /// # Errors
+    /// [`RasterError::Model`] with [`Error::NotFinite`] / [`Error::ZeroLength`] (`"axis"`) or
+    /// [`Error::NotFinite`] (`"angle"`).
+    pub fn rotation(axis: Vec3<T>, angle: T) -> Result<Self, RasterError> {
+        let a = axis.try_normalize("axis")?;
+        if !angle.is_finite() {
+            return Err(Error::NotFinite("angle").into());
+        }
+        let (s, c) = (angle.sin(), angle.cos());
+        let k = T::ONE - c;
+        let m = [
+            Vec3::new(
+                c + a.x * a.x * k,
+                a.x * a.y * k - a.z * s,
+                a.x * a.z * k + a.y * s,
+            ),
+            Vec3::new(
+                a.y * a.x * k + a.z * s,
+                c + a.y * a.y * k,
+                a.y * a.z * k - a.x * s,
+            ),
+            Vec3::new(
+                a.z * a.x * k - a.y * s,
+                a.z * a.y * k + a.x * s,
+                c + a.z * a.z * k,
+            ),
+        ];
+        Ok(Self::from_parts(m, Vec3::new(T::ZERO, T::ZERO, T::ZERO)))
+    }
+
+    /// `self` followed by `next` (`next(self(p))`).
+    pub fn then(&self, next: &Self) -> Self {
+        let col = |j: usize| {
+            let pick = |v: Vec3<T>| match j {
+                0 => v.x,
+                1 => v.y,
+                _ => v.z,
+            };
+            Vec3::new(pick(self.m[0]), pick(self.m[1]), pick(self.m[2]))
+        };
+        let (c0, c1, c2) = (col(0), col(1), col(2));
+        let m = core::array::from_fn(|i| {
+            let r = next.m[i];
+            Vec3::new(r.dot(c0), r.dot(c1), r.dot(c2))
+        });
+        let t = next.point(self.t);
+        Self::from_parts(m, t)
+    }
+
+    /// The transformed point `M p + t`. Cost: 9 multiply-adds.
+    #[inline]
+    pub fn point(&self, p: Vec3<T>) -> Vec3<T> {
+        Vec3::new(self.m[0].dot(p), self.m[1].dot(p), self.m[2].dot(p)) + self.t
+    }
+
+    /// The transformed normal direction (not normalized). Cost: 9 multiply-adds.
+    #[inline]
+    pub fn normal(&self, n: Vec3<T>) -> Vec3<T> {
+        Vec3::new(self.nm[0].dot(n), self.nm[1].dot(n), self.nm[2].dot(n))
+    }
+}
+
+/// The camera's projection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection<T> {
+    /// Perspective with vertical field of view `fov_y` (radians, in (0, pi)).
+    Perspective {
+        /// Vertical field of view, radians.
+        fov_y: T,
+    },
+    /// Orthographic, showing `half_height` world units above and below the centre.
+    Orthographic {
+        /// Half the visible height, world units.
+        half_height: T,
+    },
+}
+
+/// A camera: position, orientation, projection and viewport size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera<T> {
+    pub(super) eye: Vec3<T>,
+    pub(super) right: Vec3<T>,
+    pub(super) up: Vec3<T>,
+    pub(super) forward: Vec3<T>,
+    pub(super) perspective: bool,
+    pub(super) sx: T,
+    pub(super) sy: T,
+    pub(super) width: u16,
+    pub(super) height: u16,
+    pub(super) near: T,
+    pub(super) far: T,
+}
+
+impl<T: Real> Camera<T> {
+    /// A camera at `eye` looking at `target`, with `up` (any length, not parallel to the view)
+    /// giving the roll, for a `width` x `height` viewport. The depth range is
+    /// `[d/64, 16 d]`, `d = |target - eye|`; see [`Camera::with_depth_range`].
+    ///
+    /// # Errors
+    /// [`RasterError::Model`] for a non-finite or zero vector, `up` parallel to the view
+    /// ([`Error::Parallel`]), a non-finite projection parameter;
+    /// [`RasterError::BadParameter`] (`"fov_y"`, `"half_height"`) for one out of range;
+    /// [`RasterError::BadSize`] (`"viewport"`) for a side of 0 or above [`MAX_VIEWPORT`].
+    pub fn new(
+        eye: Vec3<T>,
+        target: Vec3<T>,
+        up: Vec3<T>,
+        projection: Projection<T>,
+        width: u16,
+        height: u16,
+    ) -> Result<Self, RasterError> {
+        if width == 0 || height == 0 || width > MAX_VIEWPORT || height > MAX_VIEWPORT {
+            return Err(RasterError::BadSize("viewport"));
+        }
+        if !eye.is_finite() {
+            return Err(Error::NotFinite("eye").into());
+        }
+        if !target.is_finite() {
+            return Err(Error::NotFinite("target").into());
+        }
+        let (forward, dist) = (target - eye)
+            .normalize_with_length()
+            .ok_or(Error::ZeroLength("target - eye"))?;
+        let up = up.try_normalize("up")?;
+        let parallel = Error::Parallel {
+            a: "up",
+            b: "target - eye",
+        };
+        let side = forward.cross(up);
+        if !(side.length() > T::from_f64(1e-6)) {
+            return Err(parallel.into());
+        }
+        let right = side.normalize().ok_or(parallel)?;
+        let up = right.cross(forward);
+        let aspect = T::from_u32(width as u32) / T::from_u32(height as u32);
+        let (perspective, sy) = match projection {
+            Projection::Perspective { fov_y } => {
+                if !fov_y.is_finite() {
+                    return Err(Error::NotFinite("fov_y").into());
+                }
+                if !(fov_y > T::ZERO && fov_y < T::PI) {
+                    return Err(RasterError::BadParameter("fov_y"));
+                }
+                let half = fov_y * T::HALF;
+                (true, half.cos() / half.sin())
+            }
+            Projection::Orthographic { half_height } => {
+                if !half_height.is_finite() {
+                    return Err(Error::NotFinite("half_height").into());
+                }
+                if !(half_height > T::ZERO) {
+                    return Err(RasterError::BadParameter("half_height"));
+                }
+                (false, T::ONE / half_height)
+            }
+        };
+        Ok(Camera {
+            eye,
+            right,
+            up,
+            forward,
+            perspective,
+            sx: sy / aspect,
+            sy,
+            width,
+            height,
+            near: dist * T::from_f64(1.0 / 64.0),
+            far: dist * T::from_f64(16.0),
+        })
+    }
+
+    /// The same camera with the depth range `[near, far]` (view distances along the view
+    /// direction; geometry outside is clipped; the 16-bit depth is linear in it).
+    ///
+    /// # Errors
+    /// [`RasterError::BadParameter`] (`"near"`, `"far"`) unless `0 < near < far`, finite.
+    pub fn with_depth_range(mut self, near: T, far: T) -> Result<Self, RasterError> {
+        if !(near > T::ZERO) || !near.is_finite() {
+            return Err(RasterError::BadParameter("near"));
+        }
+        if !(far > near) || !far.is_finite() {
+            return Err(RasterError::BadParameter("far"));
+        }
+        self.near = near;
+        self.far = far;
+        Ok(self)
+    }
+
+    /// The same camera (eye, orientation, vertical field of view or height) for a `width` x
+    /// `height` viewport: for supersampling, `k` times each side.
+    ///
+    /// # Errors
+    /// [`RasterError::BadSize`] (`"viewport"`) for a side of 0 or above [`MAX_VIEWPORT`].
+    pub fn with_viewport(mut self, width: u16, height: u16) -> Result<Self, RasterError> {
+        if width == 0 || height == 0 || width > MAX_VIEWPORT || height > MAX_VIEWPORT {
+            return Err(RasterError::BadSize("viewport"));
+        }
+        self.sx = self.sy / (T::from_u32(width as u32) / T::from_u32(height as u32));
+        self.width = width;
+        self.height = height;
+        Ok(self)
+    }
+
+    /// The viewport width in pixels.
+    pub fn width(&self) -> u16 {
+        self.width
+    }
+    /// The viewport height in pixels.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+    /// The eye position.
+    pub fn eye(&self) -> Vec3<T> {
+        self.eye
+    }
+    /// The unit view direction.
+    pub fn forward(&self) -> Vec3<T> {
+        self.forward
+    }
+
+    /// Clip coordinates `(x, y, z, w)` of a world point (`z` the view depth).
+    #[inline]
+    pub(super) fn clip(&self, p: Vec3<T>) -> [T; 4] {
+        let d = p - self.eye;
+        let z = d.dot(self.forward);
+        [
+            d.dot(self.right) * self.sx,
+            d.dot(self.up) * self.sy,
+            z,
+            if self.perspective { z } else { T::ONE },
+        ]
+    }
+
+    /// The unit direction from `p` toward the eye (the view direction itself for an
+    /// orthographic camera). Cost: 1 normalization (perspective).
+    #[inline]
+    pub fn view_dir(&self, p: Vec3<T>) -> Vec3<T> {
+        if self.perspective {
+            (self.eye - p).normalize().unwrap_or(-self.forward)
+        } else {
+            -self.forward
+        }
+    }
+
+    /// The pixel coordinates `(x, y)` (`y` down, pixel centres at `i + 0.5`) of a world point
+    /// in front of the camera, or `None` behind the near plane.
+    pub fn project(&self, p: Vec3<T>) -> Option<(T, T)> {
+        let c = self.clip(p);
+        if !(c[2] >= self.near) {
+            return None;
+        }
+        Some(self.screen_xy(c))
+    }
+
+    #[inline]
+    pub(super) fn screen_xy(&self, c: [T; 4]) -> (T, T) {
+        let iw = T::ONE / c[3];
+        let hw = T::from_u32(self.width as u32) * T::HALF;
+        let hh = T::from_u32(self.height as u32) * T::HALF;
+        ((c[0] * iw + T::ONE) * hw, (T::ONE - c[1] * iw) * hh)
+    }
+}
