@@ -341,20 +341,20 @@ fn per_unit(cal: &Calibration) -> Result<BTreeMap<String, f64>, String> {
     Ok(out)
 }
 
-/// The QEMU budget's median per-call counts: (target, backend, model) -> instructions.
+/// The QEMU budget's median per-call counts (`budget::read_counts`, the per-call table's own
+/// reader): (target, backend, model) -> instructions.
 fn read_counts(path: &Path) -> Result<BTreeMap<(String, String, String), f64>, String> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let mut out = BTreeMap::new();
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() >= 5 {
-            if let Ok(x) = f[4].parse::<f64>() {
-                out.insert((f[0].to_owned(), f[1].to_owned(), f[2].to_owned()), x);
-            }
-        }
+    let counts: BTreeMap<_, f64> = crate::budget::read_counts(path)
+        .into_iter()
+        .filter_map(|(k, (median, _))| Some((k, median? as f64)))
+        .collect();
+    if counts.is_empty() {
+        return Err(format!(
+            "no counts in {} (run cargo test -p host-sim --test qemu_budget first)",
+            path.display()
+        ));
     }
-    Ok(out)
+    Ok(counts)
 }
 
 /// A chip's calibration: (chip, calibrated backend, its QEMU budget target, other backends,

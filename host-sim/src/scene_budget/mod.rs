@@ -817,7 +817,8 @@ fn run(args: &BudgetArgs, scene: &Path) -> Result<(Vec<PathBuf>, bool), String> 
 
 /// `host-sim budget --calibrate`: writes host-sim/costs.csv from the emulators' measurements.
 pub fn calibrate_main(counts: &Path) -> ExitCode {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let here = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = here.parent().unwrap_or(here);
     let made = costs::calibrate(
         &root.join("target/rp2040-emu"),
         &root.join("target/qemu-frame"),
@@ -825,7 +826,7 @@ pub fn calibrate_main(counts: &Path) -> ExitCode {
     );
     match made {
         Ok(csv) => {
-            let path = root.join("host-sim/costs.csv");
+            let path = here.join("costs.csv");
             match std::fs::write(&path, csv) {
                 Ok(()) => {
                     println!("{}", path.display());
