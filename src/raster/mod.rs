@@ -84,6 +84,7 @@ pub mod edge;
 pub mod eg;
 pub mod mesh;
 pub mod prepared;
+mod scan;
 pub mod shade;
 pub mod target;
 

@@ -1,0 +1,299 @@
+//! Scan conversion of [`PreparedMesh`](super::PreparedMesh)'s triangles: the per-triangle
+//! setup (the edge functions, then every attribute as an integer plane over pixels) and the
+//! span loops of Gouraud and per-pixel shading (see the [`prepared`](super::prepared) module
+//! docs for what is computed and what it costs).
+
+use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
+use super::shade::{Shader, Shading};
+use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
+use super::{Camera, DrawOptions, DrawStats};
+use crate::wide::mul_64;
+use crate::{Real, Rgb, Vec3};
+
+/// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
+pub(super) const COLOUR_FRAC: u32 = 24;
+/// The largest interpolated colour, in those units (127.99: an `i32` with 24 fraction bits).
+const COLOUR_MAX: i32 = i32::MAX;
+/// Fraction bits of the depth value `q` in [0, 1] (a 16-bit depth is `q` with 16 bits).
+pub(super) const DEPTH_FRAC: u32 = 28;
+/// Fraction bits of the barycentric weights of per-pixel shading.
+const BARY_FRAC: u32 = 24;
+
+/// A linear colour times `exposure` as integers with [`COLOUR_FRAC`] fraction bits, clamped
+/// to `[0, COLOUR_MAX]`.
+#[inline]
+pub(super) fn colour_bits<T: Real>(c: Rgb<T>, exposure: T) -> [i32; 3] {
+    [c.r, c.g, c.b].map(|x| {
+        (x * exposure)
+            .to_fixed_i32(COLOUR_FRAC)
+            .clamp(0, COLOUR_MAX)
+    })
+}
+
+/// What a triangle's scan conversion needs of a vertex.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct ScreenVertex<T> {
+    pub(super) fp: FixedPoint,
+    pub(super) depth: i32,
+    pub(super) colour: [i32; 3],
+    pub(super) p: Vec3<T>,
+    pub(super) n: Vec3<T>,
+    pub(super) iw: T,
+}
+
+impl<T: Real> ScreenVertex<T> {
+    pub(super) const EMPTY: Self = ScreenVertex {
+        fp: FixedPoint::new(0, 0),
+        depth: 0,
+        colour: [0; 3],
+        p: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        n: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        iw: T::ZERO,
+    };
+}
+
+/// The draw call's fixed inputs.
+pub(super) struct Context<'a, T, S: ?Sized> {
+    pub(super) camera: &'a Camera<T>,
+    pub(super) shader: &'a S,
+    pub(super) opts: &'a DrawOptions<T>,
+    pub(super) table: &'a EncodeTable,
+    pub(super) row0: i32,
+    pub(super) row1: i32,
+}
+
+/// An attribute plane over pixels: `value(x, y) = base + x sx + (y - yb) sy` in wrapping
+/// `i32` arithmetic (exact wherever the value itself fits, which it does inside the
+/// triangle).
+#[derive(Clone, Copy, Debug, Default)]
+struct Plane {
+    base: i32,
+    sx: i32,
+    sy: i32,
+}
+
+impl Plane {
+    /// The plane through the values `a` at the three vertices (edge-triangle order):
+    /// `a0 + (a1 - a0) l1 + (a2 - a0) l2` with the triangle's barycentric planes. Cost: 6
+    /// 32 x 32 -> 64-bit products.
+    #[inline]
+    fn new(a: [i32; 3], geo: &Geometry) -> Self {
+        let (da1, da2) = (a[1] as i64 - a[0] as i64, a[2] as i64 - a[0] as i64);
+        let mix =
+            |l1: i64, l2: i64| (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32;
+        let sx = mix(geo.l1.0, geo.l2.0);
+        let at_b = a[0].wrapping_add(mix(geo.l1.2, geo.l2.2));
+        Plane {
+            base: at_b.wrapping_sub(sx.wrapping_mul(geo.xb)),
+            sx,
+            sy: mix(geo.l1.1, geo.l2.1),
+        }
+    }
+    /// The value at column 0 of the row `dy` rows below the anchor row.
+    #[inline(always)]
+    fn row(&self, dy: i32) -> i32 {
+        self.base.wrapping_add(dy.wrapping_mul(self.sy))
+    }
+}
+
+/// A triangle's barycentric planes: the weights `l1`, `l2` of vertices 1 and 2 (vertex 0 has
+/// `1 - l1 - l2`) with [`BARY_FRAC`] fraction bits, as `(per pixel in x, per pixel in y, at
+/// the anchor)`, the anchor being the centre of the triangle's top-left bounding-box pixel
+/// (`xb`, `yb`).
+struct Geometry {
+    l1: (i64, i64, i64),
+    l2: (i64, i64, i64),
+    xb: i32,
+}
+
+impl Geometry {
+    /// From the snapped vertices (positive orientation), twice the area `d > 0` and the
+    /// anchor pixel. `1/d` is one 64-bit division (a 31-bit reciprocal `r` with `1/d = r
+    /// 2^-k` to 2^-30 relative), every weight a product and a shift: `dl1/dX = f2/d`,
+    /// `dl1/dY = -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with
+    /// `(e, f)` the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy`
+    /// (vertex 0 has `l1 = l2 = 0`).
+    fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
+        let off = |k: usize| {
+            (
+                fp[k].x as i64 - fp[0].x as i64,
+                fp[k].y as i64 - fp[0].y as i64,
+            )
+        };
+        let ((e1, f1), (e2, f2)) = (off(1), off(2));
+        let d = d.max(1) as u64;
+        let n = 64 - d.leading_zeros(); // d in [2^(n-1), 2^n)
+        let sh = n.saturating_sub(33);
+        let nn = n - sh; // <= 33
+        let r = ((1u64 << (nn + 30)) / (d >> sh)) as i64; // in (2^29, 2^31]
+                                                          // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
+                                                          // BARY_FRAC - n - 30).
+        let k = n + 30;
+        let scale = |x: i64| {
+            let p = mul_64(x, r);
+            let up = 4 + BARY_FRAC;
+            if k >= up {
+                p >> (k - up)
+            } else {
+                p.wrapping_shl(up - k)
+            }
+        };
+        // The anchor's offset from vertex 0, in sub-pixels (the weights are per pixel: / 16).
+        let dx = (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as i64;
+        let dy = (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as i64;
+        let plane = |gx: i64, gy: i64| (gx, gy, (mul_64(gx, dx).wrapping_add(mul_64(gy, dy))) >> 4);
+        Geometry {
+            l1: plane(scale(f2), scale(-e2)),
+            l2: plane(scale(-f1), scale(e1)),
+            xb,
+        }
+    }
+}
+
+/// Scan-converts one triangle into the band (see the [`prepared`](super::prepared) module docs).
+pub(super) fn raster<T, P, S>(
+    ctx: &Context<'_, T, S>,
+    band: &mut Band<'_, P>,
+    v: &[ScreenVertex<T>; 3],
+    stats: &mut DrawStats,
+) where
+    T: Real,
+    P: PixelFormat,
+    S: Shader<T> + ?Sized,
+{
+    let opts = ctx.opts;
+    let Some(tri) = EdgeTriangle::new([v[0].fp, v[1].fp, v[2].fp], opts.cull) else {
+        return;
+    };
+    let v = if tri.swapped() {
+        [&v[0], &v[2], &v[1]]
+    } else {
+        [&v[0], &v[1], &v[2]]
+    };
+    stats.rasterized = stats.rasterized.wrapping_add(1);
+    let fp = tri.vertices();
+    // The anchor: the first pixel centre at or right of / below the leftmost / topmost vertex
+    // (pixel i has its centre at 16 i + 8), independent of the band.
+    let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
+    let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
+    let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+    let geo = Geometry::new(fp, tri.area2(), xb, yb);
+    let depth = Plane::new([v[0].depth, v[1].depth, v[2].depth], &geo);
+    let width = ctx.camera.width as i32;
+    let (row0, row1) = (ctx.row0, ctx.row1);
+    match opts.shading {
+        Shading::Gouraud => {
+            let planes: [Plane; 3] = core::array::from_fn(|k| {
+                Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo)
+            });
+            let table = ctx.table;
+            let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
+            // (Stepping the four attributes by additions instead of `row + x sx` per pixel,
+            // and indexing the band's rows directly, were both measured slower on the
+            // Cortex-M0+: more live values than its 8 low registers.)
+            tri.for_each_span(width, row0, row1, |y, xs, xe| {
+                let Some((px, dp)) = band.row_mut(y as u16) else {
+                    return;
+                };
+                let dy = y - yb;
+                let (d0, r0, g0, b0) = (
+                    depth.row(dy),
+                    planes[0].row(dy),
+                    planes[1].row(dy),
+                    planes[2].row(dy),
+                );
+                let (xs, xe) = (xs as usize, xe as usize);
+                let Some(px) = px.get_mut(xs..=xe) else {
+                    return;
+                };
+                let mut x = xs as i32;
+                match dp.and_then(|d| d.get_mut(xs..=xe)) {
+                    Some(dp) => {
+                        for (p, d) in px.iter_mut().zip(dp.iter_mut()) {
+                            let z = depth16(d0.wrapping_add(x.wrapping_mul(depth.sx)));
+                            if z < *d {
+                                *d = z;
+                                *p = table.pixel(
+                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
+                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
+                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                                );
+                                stats.pixels = stats.pixels.wrapping_add(1);
+                            }
+                            x += 1;
+                        }
+                    }
+                    None => {
+                        for p in px.iter_mut() {
+                            *p = table.pixel(
+                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
+                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
+                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                            );
+                            stats.pixels = stats.pixels.wrapping_add(1);
+                            x += 1;
+                        }
+                    }
+                }
+            });
+        }
+        Shading::PerPixel => {
+            let one = 1i32 << BARY_FRAC;
+            let l1 = Plane::new([0, one, 0], &geo);
+            let l2 = Plane::new([0, 0, one], &geo);
+            let iw = [v[0].iw, v[1].iw, v[2].iw];
+            let pw: [Vec3<T>; 3] = core::array::from_fn(|k| v[k].p * iw[k]);
+            let nw: [Vec3<T>; 3] = core::array::from_fn(|k| v[k].n * iw[k]);
+            let camera = ctx.camera;
+            tri.for_each_span(width, row0, row1, |y, xs, xe| {
+                let dy = y - yb;
+                let (d0, a0, b0) = (depth.row(dy), l1.row(dy), l2.row(dy));
+                for x in xs..=xe {
+                    let z = depth16(d0.wrapping_add(x.wrapping_mul(depth.sx)));
+                    let Some((px, dp)) = band.row_mut(y as u16) else {
+                        return;
+                    };
+                    if let Some(d) = dp.and_then(|d| d.get_mut(x as usize)) {
+                        if z >= *d {
+                            continue;
+                        }
+                        *d = z;
+                    }
+                    let w1 = a0.wrapping_add(x.wrapping_mul(l1.sx)).clamp(0, one);
+                    let w2 = b0.wrapping_add(x.wrapping_mul(l2.sx)).clamp(0, one);
+                    let (w1, w2) = (
+                        T::from_fixed_i32(w1, BARY_FRAC),
+                        T::from_fixed_i32(w2, BARY_FRAC),
+                    );
+                    let w0 = (T::ONE - w1 - w2).max(T::ZERO);
+                    let s = w0 * iw[0] + w1 * iw[1] + w2 * iw[2];
+                    let inv = if s > T::ZERO { T::ONE / s } else { T::ZERO };
+                    let p = (pw[0] * w0 + pw[1] * w1 + pw[2] * w2) * inv;
+                    let view = camera.view_dir(p);
+                    let n = (nw[0] * w0 + nw[1] * w1 + nw[2] * w2)
+                        .normalize()
+                        .unwrap_or(view);
+                    let n = if opts.two_sided && n.dot(view) < T::ZERO {
+                        -n
+                    } else {
+                        n
+                    };
+                    stats.shaded = stats.shaded.wrapping_add(1);
+                    let col = ctx.shader.shade(p, n, view).finite_or_zero();
+                    let c = colour_bits(col, opts.exposure);
+                    let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
+                    if let Some(p) = px.get_mut(x as usize) {
+                        *p = ctx.table.pixel(c[0] >> shift, c[1] >> shift, c[2] >> shift);
+                        stats.pixels = stats.pixels.wrapping_add(1);
+                    }
+                }
+            });
+        }
+    }
+}
+
+/// A depth value with [`DEPTH_FRAC`] fraction bits as the band's 16 bits (clamped).
+#[inline(always)]
+fn depth16(q: i32) -> u16 {
+    (q >> (DEPTH_FRAC - 16)).clamp(0, u16::MAX as i32) as u16
+}
