@@ -117,7 +117,9 @@
 //! ill-conditioned (a ratio of two quantities of the lune's width): not yet measured.
 
 use crate::lobe::MAX_EXPONENT;
-use crate::polygon::{cos_power_sums, for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight};
+use crate::polygon::{
+    arc_axis_form, cos_power_sums, for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight,
+};
 use crate::vec3::cos_sin_between;
 use crate::{Error, Real, Vec3};
 
@@ -196,20 +198,18 @@ impl<T: Real> MomentSum<T> {
         if !(scale > T::ZERO) || !scale.is_finite() {
             return;
         }
+        // (Not `phong_edge_terms`' normalized pair: measured, that moved the f32 and f64
+        // maxima of the tests by an ULP or so either way, glossy transmission's f32 worst from
+        // 2.4e-7 to 2.8e-7.)
         let (cd, sd) = (dot / scale, glen / scale);
         let inv = T::ONE / (cd * cd + sd * sd).sqrt();
         let (cos_x, sin_x) = ((cd * inv).clamp(-T::ONE, T::ONE), (sd * inv).clamp01());
-        let tperp = g.cross(s);
         let w = self.w;
         let wg = w.dot(g);
         let vg = self.v.dot(g);
-        let (a, b) = (w.dot(s), w.dot(tperp));
-        // c^2 = 1 - (w.g)^2, in the form exact near 1 (see phong.rs).
-        let f = if wg.abs() < T::HALF {
-            (T::ONE - wg) * (T::ONE + wg)
-        } else {
-            (a * a + b * b).min(T::ONE)
-        };
+        let a = w.dot(s);
+        // b, and c^2 = f = 1 - (w.g)^2.
+        let (b, f) = arc_axis_form(w, g, s, wg, a);
         let alpha = self.wv * wg;
         let stop = if self.budget > T::ZERO {
             let awg = wg.abs();

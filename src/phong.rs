@@ -62,7 +62,8 @@ use crate::hemisphere::HemisphereLight;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
 use crate::polygon::{
-    cos_power_sums, for_each_clipped_edge, products_in_range, ClippedEdge, PolygonLight,
+    arc_axis_form, cos_power_sums, for_each_clipped_edge, products_in_range, ClippedEdge,
+    PolygonLight,
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
@@ -341,16 +342,9 @@ fn phong_edge_terms<T: Real>(
     if m == 0 {
         return Some((w, T::ZERO));
     }
-    let rp = r.dot(gu.cross(ua));
+    let (rp, f) = arc_axis_form(r, gu, ua, rg, ra);
     // x itself enters only the sums of even order (odd m).
     let x = if even { T::ZERO } else { glen.atan2(dot) };
-    // f = a^2 + b^2 = 1 - (r.gu)^2: the second form is exact to an ULP near 1, where
-    // the recurrence raises f to the power m/2 (see cos_sin_between).
-    let f = if rg.abs() < T::HALF {
-        (T::ONE - rg) * (T::ONE + rg)
-    } else {
-        (ra * ra + rp * rp).min(T::ONE)
-    };
     // T_sum(a, b, m - 1, x) of Snyder appendix G: every T(k), k = m - 1, m - 3, ...
     let (sum, last) = cos_power_sums(m - 1, x, cos_x, sin_x, ra, rp, f, None);
     Some((w, rg * (sum + last)))
