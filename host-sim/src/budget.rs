@@ -88,6 +88,11 @@ pub struct BudgetArgs {
     /// is more than 15 % off.
     #[arg(long, value_name = "FRAMES.csv", requires = "scene")]
     pub check: Option<PathBuf>,
+    /// With --scene: write the scene, as written, as Rust source for the boards' scene player
+    /// (`boards/demo-scene/src/spec.rs`: a `SceneSpec` constant) into OUT.rs, and nothing
+    /// else. With --check, fail instead if OUT.rs differs from it.
+    #[arg(long, value_name = "OUT.rs", requires = "scene")]
+    pub emit_spec: Option<PathBuf>,
     /// Write host-sim/costs.csv (the unit costs of --scene) from the emulators' calibration
     /// runs (target/rp2040-emu, target/qemu-frame) and the QEMU budget's counts.
     #[arg(long, conflicts_with = "scene")]
@@ -1065,6 +1070,7 @@ mod tests {
             fps: None,
             max_error: None,
             check: None,
+            emit_spec: None,
             calibrate: false,
         };
         let rows = budget(&args).unwrap();

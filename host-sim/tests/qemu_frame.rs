@@ -21,7 +21,7 @@
 // demo-scene's source as a module of this test: host-sim cannot depend on the crate (with the
 // root workspace's `members = [".", ...]`, `exclude = ["boards"]` does not apply to path
 // dependencies, and demo-scene, a workspace root itself, is refused as a member).
-#[allow(dead_code, unused_attributes)]
+#[allow(dead_code, unused_attributes, unexpected_cfgs)]
 #[path = "../../boards/demo-scene/src/lib.rs"]
 mod demo_scene;
 #[path = "support/process.rs"]
@@ -72,11 +72,19 @@ struct Output {
 }
 
 /// Builds the firmware (release) into `target_dir`; the ELF's path.
-fn build(target_dir: &Path) -> Result<PathBuf, String> {
+fn build(target_dir: &Path, features: &[&str]) -> Result<PathBuf, String> {
     let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
-    cmd.current_dir(root().join("boards/qemu-frame"))
-        .args(["build", "--quiet", "--release", "--target", TRIPLE])
-        .arg("--target-dir")
+    cmd.current_dir(root().join("boards/qemu-frame")).args([
+        "build",
+        "--quiet",
+        "--release",
+        "--target",
+        TRIPLE,
+    ]);
+    for f in features {
+        cmd.args(["--features", f]);
+    }
+    cmd.arg("--target-dir")
         .arg(target_dir)
         .env_remove("RUSTFLAGS")
         .env_remove("CARGO_ENCODED_RUSTFLAGS")
@@ -283,7 +291,8 @@ fn compare(name: &str, target: &Frame, host: &Frame) -> Result<usize, String> {
 }
 
 /// The markdown table and the CSV of the counts.
-fn tables(frames: &BTreeMap<(String, u32), Frame>) -> (String, String) {
+/// The frames' markdown table and CSV, in the order of `keys` (mode, frame number).
+fn tables(frames: &BTreeMap<(String, u32), Frame>, keys: &[(String, u32)]) -> (String, String) {
     let names: Vec<&str> = Stage::ALL.iter().map(|s| s.name()).collect();
     let mut md = format!(
         "| mode | frame | total | {} | whole call | shader calls | pixels | triangle setups | ms at {MHZ} MHz, 1 instruction/cycle |\n",
@@ -295,10 +304,9 @@ fn tables(frames: &BTreeMap<(String, u32), Frame>) -> (String, String) {
         "mode,frame,total,{},call,shader_calls,pixels,triangle_setups\n",
         names.join(",")
     );
-    // In the firmware's order: modes as listed, then frames.
-    for (mode, _) in scene::MODES {
-        for n in scene::FRAMES {
-            let Some(f) = frames.get(&(mode.to_owned(), n)) else {
+    for (mode, n) in keys {
+        {
+            let Some(f) = frames.get(&(mode.clone(), *n)) else {
                 continue;
             };
             let ticks: Vec<String> = f.ticks.iter().map(u32::to_string).collect();
@@ -327,7 +335,7 @@ fn tables(frames: &BTreeMap<(String, u32), Frame>) -> (String, String) {
 fn check(out_dir: &Path) -> Result<String, Vec<String>> {
     let fail = |e: String| vec![e];
     let start = Instant::now();
-    let elf = build(&out_dir.join("build")).map_err(fail)?;
+    let elf = build(&out_dir.join("build"), &[]).map_err(fail)?;
     let built = start.elapsed();
     let start = Instant::now();
     let text = qemu(&elf).map_err(fail)?;
@@ -363,7 +371,12 @@ fn check(out_dir: &Path) -> Result<String, Vec<String>> {
             },
         }
     }
-    let (md, csv) = tables(&out.frames);
+    // In the firmware's order: modes as listed, then frames.
+    let keys: Vec<(String, u32)> = scene::MODES
+        .iter()
+        .flat_map(|(m, _)| scene::FRAMES.iter().map(|&n| ((*m).to_owned(), n)))
+        .collect();
+    let (md, csv) = tables(&out.frames, &keys);
     if out.costs.is_empty() {
         failed.push("no COST lines (the calibration did not run)".into());
     }
@@ -381,6 +394,31 @@ fn check(out_dir: &Path) -> Result<String, Vec<String>> {
         println!("\n{md}");
         Err(failed)
     }
+}
+
+/// The scene files' frames (the firmware built with its feature `scene-file`: frame 0 of each
+/// scene of `demo_scene::scenes`), written to `scenes.md` and `scenes.csv` (modes
+/// `scene:<name>`) for `host-sim budget --check`, which compares them with its predictions
+/// and requires the host's counts. The markdown table, or the failure.
+fn check_scenes(out_dir: &Path) -> Result<String, String> {
+    let elf = build(&out_dir.join("build-scenes"), &["scene-file"])?;
+    let out = parse(&qemu(&elf)?)?;
+    check_counter(&out.selfcheck)?;
+    let keys: Vec<(String, u32)> = out.frames.keys().cloned().collect();
+    if keys.len() < 2
+        || keys
+            .iter()
+            .any(|(m, n)| !m.starts_with("scene:") || *n != 0)
+    {
+        return Err(format!(
+            "the scene-file firmware printed the frames {keys:?}: expected frame 0 of at least two scene:<name> modes"
+        ));
+    }
+    let (md, csv) = tables(&out.frames, &keys);
+    std::fs::write(out_dir.join("scenes.md"), &md)
+        .and_then(|()| std::fs::write(out_dir.join("scenes.csv"), &csv))
+        .map_err(|e| format!("writing {}: {e}", out_dir.display()))?;
+    Ok(md)
 }
 
 fn main() -> ExitCode {
@@ -412,14 +450,19 @@ fn main() -> ExitCode {
     }
     println!("qemu_frame: {}", qemu_version());
     let out_dir = root().join("target/qemu-frame");
-    match check(&out_dir) {
+    let checked = check(&out_dir).and_then(|md| {
+        let scenes = check_scenes(&out_dir).map_err(|e| vec![e])?;
+        println!("\ninstructions per stage of the scene files' frame 0 (boards/demo-scene's spec player, f32)\n\n{scenes}");
+        Ok(md)
+    });
+    match checked {
         Ok(md) => {
             println!(
                 "\ninstructions per stage of the demo frame (exact, QEMU icount; f32 on the \
                  Cortex-M4F; ms: a lower bound at {MHZ} MHz)\n\n{md}"
             );
             println!(
-                "wrote {}/frames.md, frames.csv and calibration.csv",
+                "wrote {}/frames.md, frames.csv, calibration.csv, scenes.md and scenes.csv",
                 out_dir.display()
             );
             println!("1 passed, 0 failed");

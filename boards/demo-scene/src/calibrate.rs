@@ -9,18 +9,27 @@
 //! |---|---|---|
 //! | `diffuse:<kind>` | [`Illuminant::diffuse`] of one light at [`POINTS`] shading points | calls |
 //! | `phong8:<kind>`, `phong32:<kind>` | [`Illuminant::phong`] with m = 8 and 32 at the same points | calls |
+//! | each of those with `:lit`, `:dark` | the same calls at the points where they give light, and where they give none (each subset in its own loop) | calls |
 //! | `lit_matte`, `lit_specular` | [`Lit::shade`] with no light: the material's own work | calls |
 //! | `vertex_lit`, `vertex_unlit` | [`PreparedMesh::transform`] / `transform_unlit` of a 10 x 20 UV sphere | vertices |
-//! | `shade_vertex` | [`PreparedMesh::shade`] of that sphere with a constant-colour shader | shader calls |
+//! | `shade_vertex` | [`PreparedMesh::shade`] of that sphere with a shader that takes its inputs (as a lit one) and returns a constant | shader calls |
+//! | `shade_vertex_flat` | the same with a constant-colour shader that ignores its inputs (an emissive object's) | shader calls |
 //! | `band_clear` | [`Band::clear`] of every band of the frame | bands |
 //! | `raster_big`, `raster_grid` | Gouraud [`PreparedMesh::draw`] of a square seen face on, as 2 and as 512 triangles, every band | pixels (and triangle setups) |
-//! | `raster_big_pp` | the 2-triangle square per pixel with a constant-colour shader | pixels (and shader calls) |
+//! | `raster_big_pp` | the 2-triangle square per pixel with the shader of `shade_vertex` | pixels (and shader calls) |
 //!
 //! The light kinds are those the firmware's features build (`polygon` (a quad), `sphere`,
 //! `cap`, `point`, `directional`, `ambient`); the shading points are [`POINTS`] points of a
 //! sphere of radius 0.6 at the origin, every direction (Fibonacci), seen from the demo's
 //! camera, so about half of them face away from each light (the early exits count as in a
 //! scene). Everything lies within the fixed-point range.
+//!
+//! A light's cost depends on whether it reaches the point: facing away, below the horizon, a
+//! Phong lobe that misses the light, each model exits early. A scene whose visible points
+//! mostly face its lights pays the full cost far more often than these points do (half of
+//! them face away), so every light item is also measured on its lit and its dark points
+//! apart, and `host-sim budget` counts, per object and light, how many calls of the scene give
+//! light (the `:lit` cost) and how many give none (the `:dark` cost).
 
 use arealight::raster::{
     mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
@@ -28,7 +37,7 @@ use arealight::raster::{
 };
 use arealight::{
     Ambient, CapLight, DirectionalLight, Illuminant, PhongLobe, PointLight, PolygonLight, Real,
-    Rgb, SphereLight, Vec3,
+    Rgb, Scene, SceneLight, SphereLight, Vec3,
 };
 
 use super::{BACKGROUND, HEIGHT, WIDTH};
@@ -104,7 +113,22 @@ struct Flat<T>(Rgb<T>);
 
 impl<T: Real> Shader<T> for Flat<T> {
     fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
-        self.0
+        // Opaque, as an emissive object's colour is data (the encoding is not hoisted).
+        core::hint::black_box(self.0)
+    }
+}
+
+/// A constant colour that takes the point, the normal and the view vector it is given (through
+/// `black_box`), as a lit shader does: with [`Flat`], which ignores them, the compiler drops
+/// the rasterizer's per-call work for them (the interpolated normal normalized, the view
+/// vector), which every lit object pays.
+struct Probe<T>(Rgb<T>);
+
+impl<T: Real> Shader<T> for Probe<T> {
+    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
+        core::hint::black_box((p, n, v));
+        // Opaque, so that the colour's encoding is not hoisted out of the loop either.
+        core::hint::black_box(self.0)
     }
 }
 
@@ -169,31 +193,93 @@ fn time(clock: &mut impl FnMut() -> u32, f: impl FnOnce()) -> u32 {
     clock().wrapping_sub(t0)
 }
 
-/// One light's `diffuse` and `phong` (m = 8, 32) items.
-fn light_items<T: Real, L: Illuminant<T>>(
+/// Times `call` at every point, then at the points where it gives light (`lit`: a non-zero
+/// channel) and at those where it gives none (`dark`: the early exits, a light behind the
+/// surface or a lobe that misses it), each subset in a loop of its own: the samples `name`,
+/// `lit` and `dark` (a subset with no point gives a sample of count 0).
+fn split_item<T: Real>(
     names: [&'static str; 3],
-    light: &L,
-    pts: &Points<T>,
-    lobes: &[PhongLobe<T>; 2],
+    call: impl Fn(usize) -> Rgb<T>,
     clock: &mut impl FnMut() -> u32,
     out: &mut impl FnMut(Sample),
 ) {
     let mut sink = T::ZERO;
     let ticks = time(clock, || {
         for i in 0..POINTS {
-            sink += core::hint::black_box(light.diffuse(pts.p[i], pts.n[i])).r;
+            sink += core::hint::black_box(call(i)).r;
         }
     });
     out(sample(names[0], POINTS as u32, ticks));
-    for (name, lobe) in names[1..].iter().zip(lobes) {
+    let (mut lit, mut dark) = ([0u8; POINTS], [0u8; POINTS]);
+    let (mut n_lit, mut n_dark) = (0, 0);
+    for i in 0..POINTS {
+        let c = call(i);
+        if c.r > T::ZERO || c.g > T::ZERO || c.b > T::ZERO {
+            lit[n_lit] = i as u8;
+            n_lit += 1;
+        } else {
+            dark[n_dark] = i as u8;
+            n_dark += 1;
+        }
+    }
+    for (name, subset) in [(names[1], &lit[..n_lit]), (names[2], &dark[..n_dark])] {
         let ticks = time(clock, || {
-            for i in 0..POINTS {
-                sink += core::hint::black_box(light.phong(lobe, pts.p[i], pts.r[i])).r;
+            for &i in subset {
+                sink += core::hint::black_box(call(usize::from(i))).r;
             }
         });
-        out(sample(name, POINTS as u32, ticks));
+        out(sample(name, subset.len() as u32, ticks));
     }
     core::hint::black_box(sink);
+}
+
+/// One light's `diffuse` and `phong` (m = 8, 32) items, each also split into its `:lit` and
+/// `:dark` calls ([`split_item`]).
+fn light_items<T: Real>(
+    names: [[&'static str; 3]; 3],
+    light: SceneLight<T, 4>,
+    pts: &Points<T>,
+    lobes: &[PhongLobe<T>; 2],
+    clock: &mut impl FnMut() -> u32,
+    out: &mut impl FnMut(Sample),
+) -> Result<(), RasterError> {
+    // The light as the firmware calls it: in a `Scene` (its dispatch, colour and culling
+    // tests included), behind `black_box` so that it is data, as a scene's lights are (the
+    // compiler cannot fold its constants into the calls).
+    let mut scene = Scene::<T, 1, 4>::new();
+    scene
+        .push(light, Rgb::splat(T::ONE))
+        .map_err(|_| RasterError::BadParameter("calibration scene"))?;
+    let scene = core::hint::black_box(&scene);
+    split_item(names[0], |i| scene.diffuse(pts.p[i], pts.n[i]), clock, out);
+    for (name, lobe) in names[1..].iter().zip(lobes) {
+        split_item(*name, |i| scene.phong(lobe, pts.p[i], pts.r[i]), clock, out);
+    }
+    Ok(())
+}
+
+/// The names of one light kind's items: `diffuse:<kind>`, `phong8:<kind>`, `phong32:<kind>`,
+/// each with its `:lit` and `:dark` subsets.
+macro_rules! items {
+    ($kind:literal) => {
+        [
+            [
+                concat!("diffuse:", $kind),
+                concat!("diffuse:", $kind, ":lit"),
+                concat!("diffuse:", $kind, ":dark"),
+            ],
+            [
+                concat!("phong8:", $kind),
+                concat!("phong8:", $kind, ":lit"),
+                concat!("phong8:", $kind, ":dark"),
+            ],
+            [
+                concat!("phong32:", $kind),
+                concat!("phong32:", $kind, ":lit"),
+                concat!("phong32:", $kind, ":dark"),
+            ],
+        ]
+    };
 }
 
 fn sample(item: &'static str, count: u32, ticks: u32) -> Sample {
@@ -229,62 +315,58 @@ pub fn run<T: Real>(
         v3(-1.0, 1.9, 0.4),
     ])?;
     light_items(
-        ["diffuse:polygon", "phong8:polygon", "phong32:polygon"],
-        &panel,
+        items!("polygon"),
+        SceneLight::Polygon(panel),
         &pts,
         &lobes,
         clock,
         out,
-    );
+    )?;
     let lamp = SphereLight::new(v3(0.07, 0.75, 1.3), T::from_f64(0.15))?;
     light_items(
-        ["diffuse:sphere", "phong8:sphere", "phong32:sphere"],
-        &lamp,
+        items!("sphere"),
+        SceneLight::Sphere(lamp),
         &pts,
         &lobes,
         clock,
         out,
-    );
+    )?;
     let cap = CapLight::new(v3(0.3, 1.0, 0.2), T::from_f64(0.3))?;
     light_items(
-        ["diffuse:cap", "phong8:cap", "phong32:cap"],
-        &cap,
+        items!("cap"),
+        SceneLight::Cap(cap),
         &pts,
         &lobes,
         clock,
         out,
-    );
+    )?;
     let point = PointLight::inverse_square(v3(1.0, 1.5, 1.0))?;
     light_items(
-        ["diffuse:point", "phong8:point", "phong32:point"],
-        &point,
+        items!("point"),
+        SceneLight::Point(point),
         &pts,
         &lobes,
         clock,
         out,
-    );
+    )?;
     let sun = DirectionalLight::new(v3(0.3, 1.0, 0.2))?;
     light_items(
-        [
-            "diffuse:directional",
-            "phong8:directional",
-            "phong32:directional",
-        ],
-        &sun,
+        items!("directional"),
+        SceneLight::Directional(sun),
         &pts,
         &lobes,
         clock,
         out,
-    );
+    )?;
     let ambient = Ambient(Rgb::from_f64([0.03, 0.035, 0.05]));
     light_items(
-        ["diffuse:ambient", "phong8:ambient", "phong32:ambient"],
-        &ambient,
+        items!("ambient"),
+        SceneLight::Ambient(ambient),
         &pts,
         &lobes,
         clock,
         out,
-    );
+    )?;
 
     // The material's own work in `Lit::shade` (no light).
     let matte = Material::matte(Rgb::from_f64([0.8, 0.3, 0.2]))?;
@@ -343,6 +425,7 @@ pub fn run<T: Real>(
     opts.cull = Cull::Back;
     opts.encoding = Encoding::Gamma2;
     let flat = Flat(Rgb::from_f64([0.5, 0.4, 0.3]));
+    let probe = Probe(Rgb::from_f64([0.5, 0.4, 0.3]));
     let here = Affine::identity();
     {
         let mut sphere = PreparedMesh::new(sphere, &mut prepared[..])?;
@@ -353,8 +436,10 @@ pub fn run<T: Real>(
         out(sample("vertex_unlit", n, ticks));
         sphere.transform(&camera, &here);
         let mut calls = 0;
-        let ticks = time(clock, || calls = sphere.shade(&camera, &flat, &opts));
+        let ticks = time(clock, || calls = sphere.shade(&camera, &probe, &opts));
         out(sample("shade_vertex", calls, ticks));
+        let ticks = time(clock, || calls = sphere.shade(&camera, &flat, &opts));
+        out(sample("shade_vertex_flat", calls, ticks));
     }
 
     // A 1.6 x 1.6 square facing the camera (about 130 pixels on a side), as 2 triangles and
@@ -396,7 +481,7 @@ pub fn run<T: Real>(
                 bands += 1;
             }
             let t0 = clock();
-            let s = m.draw(&camera, band, &flat, o, table)?;
+            let s = m.draw(&camera, band, &probe, o, table)?;
             ticks = ticks.wrapping_add(clock().wrapping_sub(t0));
             stats.rasterized += s.rasterized;
             stats.pixels += s.pixels;

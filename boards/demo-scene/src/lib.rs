@@ -39,6 +39,10 @@
 #![deny(missing_docs)]
 
 pub mod calibrate;
+#[cfg(feature = "scene-file")]
+pub mod scenes;
+#[cfg(feature = "scene-file")]
+pub mod spec;
 
 use arealight::raster::{
     mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,

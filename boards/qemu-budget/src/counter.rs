@@ -108,7 +108,6 @@ impl Tim2 {
     /// loads), so `raw < empty` means the counter is not counting instructions: that stops the
     /// run with a `FAIL` line instead of wrapping to a count near 2^32.
     #[inline]
-    #[allow(dead_code)] // boards/qemu-frame includes this file and subtracts on its own
     pub fn net(&self, raw: u32) -> u32 {
         match raw.checked_sub(self.empty) {
             Some(n) => n,

@@ -42,6 +42,8 @@
 //! the first of those reads and the update of the paused count: about 5 instructions per band.
 #![no_std]
 #![no_main]
+// With `scene-file` the demo's modes are not rendered.
+#![cfg_attr(feature = "scene-file", allow(dead_code))]
 
 #[allow(dead_code)]
 #[path = "../../qemu-budget/src/counter.rs"]
@@ -62,7 +64,13 @@ use core::sync::atomic::{compiler_fence, Ordering::SeqCst};
 use arealight::raster::{Band, Rgb565};
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hio};
+#[cfg(not(feature = "scene-file"))]
 use demo_scene::calibrate::{self, CalibrationBuffers};
+#[cfg(feature = "scene-file")]
+use demo_scene::{
+    scenes,
+    spec::{Player, SpecBuffers},
+};
 use demo_scene::{Stage, BAND_PIXELS, BAND_ROWS, HEIGHT, WIDTH};
 
 use counter::{cnt, fail, self_check, Line, Tim2};
@@ -74,23 +82,32 @@ const CPUID: usize = 0xE000_ED00;
 /// The statics (see memory.x): the scene's storage, the band, its depth buffer, and the copy
 /// the flush hands over.
 struct Ram {
+    #[cfg(not(feature = "scene-file"))]
     storage: scene::Storage,
     pixels: [Rgb565; BAND_PIXELS],
     depth: [u16; BAND_PIXELS],
     sent: [Rgb565; BAND_PIXELS],
     /// The unit-cost calibration's meshes (`demo_scene::calibrate`).
+    #[cfg(not(feature = "scene-file"))]
     calibration: CalibrationBuffers<f32>,
+    /// The scene files' meshes (`demo_scene::scenes`, feature `scene-file`).
+    #[cfg(feature = "scene-file")]
+    scenes: SpecBuffers<f32, { scenes::VERTICES }, { scenes::TRIANGLES }>,
 }
 
 /// A constant initializer: the storage is never built on the stack. (`MeshBuffers::new()`
 /// evaluated at run time builds its arrays in stack temporaries first: about 145 KiB at
 /// opt-level 3, which this RAM cannot hold besides the storage itself.)
 static mut RAM: Ram = Ram {
+    #[cfg(not(feature = "scene-file"))]
     storage: scene::Storage::new(),
     pixels: [Rgb565(0); BAND_PIXELS],
     depth: [0; BAND_PIXELS],
     sent: [Rgb565(0); BAND_PIXELS],
+    #[cfg(not(feature = "scene-file"))]
     calibration: CalibrationBuffers::new(),
+    #[cfg(feature = "scene-file")]
+    scenes: SpecBuffers::new(),
 };
 
 /// Semihosting stdout through a buffer (one host write per 1 KiB, not per line).
@@ -230,7 +247,7 @@ fn run_mode(
         compiler_fence(SeqCst);
         let t1 = clock();
         compiler_fence(SeqCst);
-        let call = t1.wrapping_sub(t0).wrapping_sub(t.empty);
+        let call = t.net(t1.wrapping_sub(t0));
         let report = match report {
             Ok(r) => r,
             Err(e) => fail(line, format_args!("{mode} frame {n}: {e:?}")),
@@ -244,6 +261,77 @@ fn run_mode(
         let st = report.stats;
         let _ = write!(line, " {} {} {}", st.shaded, st.pixels, st.rasterized);
         line.send();
+    }
+}
+
+/// With the feature `scene-file`, instead of the demo: renders frame 0 of every scene of
+/// `demo_scene::scenes` (the scene files of `host-sim/scenes/`, as written) and prints `CALL`
+/// and `FRAME` lines as [`run_mode`] does, with the mode `scene:<name>` (no `B` lines: the
+/// check is `host-sim budget --check`'s, on the counts and instructions).
+#[cfg(feature = "scene-file")]
+#[inline(never)]
+fn run_scenes(
+    t: &Tim2,
+    buffers: &mut SpecBuffers<f32, { scenes::VERTICES }, { scenes::TRIANGLES }>,
+    band: &mut Band<'_, Rgb565>,
+    sent: &mut [Rgb565; BAND_PIXELS],
+    line: &mut Line,
+) {
+    for spec in scenes::ALL {
+        let mode = spec.name;
+        let mut player = match Player::new(spec, buffers) {
+            Ok(p) => p,
+            Err(e) => fail(line, format_args!("scene:{mode}: Player::new: {e:?}")),
+        };
+        let mut clock = cnt;
+        // The flush hands the band over (a copy), as the demo's does.
+        let flush = |b: &Band<'_, Rgb565>| {
+            let px = b.pixels();
+            let len = px.len().min(BAND_PIXELS);
+            sent[..len].copy_from_slice(&px[..len]);
+            compiler_fence(SeqCst);
+            Ok::<(), Infallible>(())
+        };
+        compiler_fence(SeqCst);
+        let t0 = cnt();
+        compiler_fence(SeqCst);
+        let report = player.render_frame(band, &mut clock, flush);
+        compiler_fence(SeqCst);
+        let t1 = cnt();
+        compiler_fence(SeqCst);
+        let call = t.net(t1.wrapping_sub(t0));
+        let report = match report {
+            Ok(r) => r,
+            Err(e) => fail(line, format_args!("scene:{mode}: {e:?}")),
+        };
+        let _ = write!(line, "CALL scene:{mode} 0 {call}");
+        line.send();
+        let _ = write!(line, "FRAME scene:{mode} 0 {}", report.total());
+        for s in Stage::ALL {
+            let _ = write!(line, " {}", report.ticks[s as usize]);
+        }
+        let st = report.stats;
+        let _ = write!(line, " {} {} {}", st.shaded, st.pixels, st.rasterized);
+        line.send();
+    }
+}
+
+/// The unit costs of `host-sim budget --scene` (`demo_scene::calibrate`): `COST` lines.
+#[cfg(not(feature = "scene-file"))]
+#[inline(never)]
+fn calibrate(buffers: &mut CalibrationBuffers<f32>, band: &mut Band<'_, Rgb565>, line: &mut Line) {
+    let mut clock = cnt;
+    let mut costs = Line::new();
+    let result = calibrate::run(buffers, band, &mut clock, &mut |s| {
+        let _ = write!(
+            costs,
+            "COST {} {} {} {} {}",
+            s.item, s.count, s.setups, s.calls, s.ticks
+        );
+        costs.send();
+    });
+    if let Err(e) = result {
+        fail(line, format_args!("calibrate: {e:?}"));
     }
 }
 
@@ -270,6 +358,9 @@ fn main() -> ! {
         Ok(b) => b,
         Err(e) => fail(&mut line, format_args!("Band::new: {e:?}")),
     };
+    #[cfg(feature = "scene-file")]
+    run_scenes(&t, &mut ram.scenes, &mut band, &mut ram.sent, &mut line);
+    #[cfg(not(feature = "scene-file"))]
     for mode in scene::MODES {
         run_mode(
             &t,
@@ -281,18 +372,8 @@ fn main() -> ! {
         );
     }
     // The unit costs of `host-sim budget --scene` (instructions per item).
-    let mut clock = cnt;
-    let result = calibrate::run(&mut ram.calibration, &mut band, &mut clock, &mut |s| {
-        let _ = write!(
-            line,
-            "COST {} {} {} {} {}",
-            s.item, s.count, s.setups, s.calls, s.ticks
-        );
-        line.send();
-    });
-    if let Err(e) = result {
-        fail(&mut line, format_args!("calibrate: {e:?}"));
-    }
+    #[cfg(not(feature = "scene-file"))]
+    calibrate(&mut ram.calibration, &mut band, &mut line);
     let (end, start) = stack_bounds();
     let _ = write!(line, "STACK {} {}", stack_used(), start - end);
     line.send();

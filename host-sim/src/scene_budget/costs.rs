@@ -263,6 +263,9 @@ pub fn predict(
     let transform = work.total(|o| o.vertices_lit) as f64 * costs.need(b, "vertex_lit")?
         + work.total(|o| o.vertices_unlit) as f64 * costs.need(b, "vertex_unlit")?;
     let shade_vertex = costs.need(b, "shade_vertex")?;
+    // An emissive object's constant shader ignores the point, normal and view vector, whose
+    // per-call work the compiler then drops.
+    let shade_flat = costs.need(b, "shade_vertex_flat").unwrap_or(shade_vertex);
     let (tri, px, pp) = (
         costs.need(b, "triangle")?,
         costs.need(b, "pixel")?,
@@ -272,7 +275,11 @@ pub fn predict(
     let mut raster = work.bands as f64 * costs.need(b, "band_clear")?;
     for (o, f) in work.objects.iter().zip(finishes) {
         let call = call_cost(costs, b, lights, *f)?;
-        shade += o.vertex_calls as f64 * (shade_vertex + call);
+        let per_vertex = match f {
+            Finish::Emissive => shade_flat,
+            Finish::Lit { .. } => shade_vertex,
+        };
+        shade += o.vertex_calls as f64 * (per_vertex + call);
         raster += o.setups as f64 * tri + o.pixels as f64 * px + o.pixel_calls as f64 * (pp + call);
     }
     let mut flush = work.bytes as f64 * costs.need(b, "flush_byte")?;
@@ -493,10 +500,11 @@ pub fn calibrate(
             }
             let mean = if n > 0.0 { a / n } else { continue };
             for ((_, item), (c, _)) in &base {
+                // `diffuse:<kind>` and its `:lit`/`:dark` subsets.
                 let ratio = match item.split_once(':') {
                     Some((what, kind)) => KIND_MODELS
                         .iter()
-                        .find(|(k, _, _)| *k == kind)
+                        .find(|(k, _, _)| Some(*k) == kind.split(':').next())
                         .and_then(|(_, d, p)| {
                             let m = if what == "diffuse" { d } else { p };
                             Some(count(other, m)? / count(backend, m)?)

@@ -623,8 +623,10 @@ struct Measured {
     counts: Option<[u64; 3]>,
 }
 
-/// The emulated frames of `path` for `chip` (frame 0 of each).
-fn measured(path: &Path, chip: &Chip) -> Result<Vec<Measured>, String> {
+/// The emulated frames of `path` for `chip` (frame 0 of each) that render the scene file named
+/// `scene` (its stem): the demo firmware's frames for `demo`, the scene-file firmware's
+/// (`scene:<name>`: `boards/demo-scene`'s spec player, the scene as written) for the others.
+fn measured(path: &Path, chip: &Chip, scene: &str) -> Result<Vec<Measured>, String> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut lines = text.lines();
@@ -652,6 +654,27 @@ fn measured(path: &Path, chip: &Chip) -> Result<Vec<Measured>, String> {
             (Some(a), Some(b), Some(c)) => Some([a, b, c]),
             _ => None,
         };
+        let file = get("firmware")
+            .or(get("mode"))
+            .and_then(|m| m.strip_prefix("scene:"));
+        if let Some(name) = file {
+            let cores = get("cores")
+                .and_then(|c| c.parse::<u32>().ok())
+                .unwrap_or(1);
+            if name == scene && cores == chip.cores {
+                let units = get("total").and_then(|x| x.parse().ok()).unwrap_or(sum);
+                out.push(Measured {
+                    label: format!("scene-file firmware, {name} frame 0"),
+                    plan: "as written".to_owned(),
+                    units,
+                    counts,
+                });
+            }
+            continue;
+        }
+        if scene != "demo" {
+            continue;
+        }
         if let Some(fw) = get("firmware") {
             let want = if chip.cores > 1 {
                 "lit_scene_dual_core"
@@ -685,7 +708,11 @@ fn measured(path: &Path, chip: &Chip) -> Result<Vec<Measured>, String> {
         }
     }
     if out.is_empty() {
-        return Err(format!("{}: no frame 0 for {}", path.display(), chip.name));
+        return Err(format!(
+            "{}: no frame 0 of {scene} for {}",
+            path.display(),
+            chip.name
+        ));
     }
     Ok(out)
 }
@@ -701,7 +728,7 @@ pub fn check(b: &Budget, path: &Path) -> Result<(String, bool), String> {
     );
     let _ = writeln!(s, "|---|---|---:|---:|---:|---|");
     let mut ok = true;
-    for m in measured(path, b.chip)? {
+    for m in measured(path, b.chip, &stem(Path::new(&b.scene)))? {
         let (label, plan, units) = (m.label, m.plan, m.units);
         let row = b.rows.iter().filter(|r| r.backend == backend).find(|r| {
             if r.tessellation != 1.0 {
@@ -763,6 +790,9 @@ fn stem(path: &Path) -> String {
 /// -answer.md (the answer and the check alone);
 /// with `--check`, compares and fails beyond the tolerance.
 pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
+    if let Some(out) = &args.emit_spec {
+        return emit_spec_main(scene, out, args.check.is_some());
+    }
     match run(args, scene) {
         Ok((paths, ok)) => {
             for p in paths {
@@ -779,6 +809,46 @@ pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
         }
         Err(e) => {
             eprintln!("host-sim budget: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// `--emit-spec OUT.rs`: writes (or with `check`, compares) the scene's Rust source for the
+/// boards.
+fn emit_spec_main(scene: &Path, out: &Path, check: bool) -> ExitCode {
+    let made = std::fs::read_to_string(scene)
+        .map_err(|e| format!("{}: {e}", scene.display()))
+        .and_then(|src| crate::scene_file::emit_spec(&scene.display().to_string(), &src));
+    let source = match made {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("host-sim budget: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    if check {
+        let now = std::fs::read_to_string(out).unwrap_or_default();
+        if now != source {
+            eprintln!(
+                "host-sim budget: {} is not what --emit-spec writes for {}: regenerate it (host-sim budget --scene {} --emit-spec {})",
+                out.display(),
+                scene.display(),
+                scene.display(),
+                out.display()
+            );
+            return ExitCode::FAILURE;
+        }
+        println!("{} is up to date", out.display());
+        return ExitCode::SUCCESS;
+    }
+    match std::fs::write(out, source) {
+        Ok(()) => {
+            println!("{}", out.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("host-sim budget: {}: {e}", out.display());
             ExitCode::FAILURE
         }
     }
@@ -847,7 +917,13 @@ pub fn calibrate_main(counts: &Path) -> ExitCode {
 
 /// The board demo's own code, for the test that the demo's scene file is its frame.
 #[cfg(test)]
-#[allow(dead_code, unused_imports, unused_attributes, clippy::all)]
+#[allow(
+    dead_code,
+    unused_imports,
+    unused_attributes,
+    unexpected_cfgs,
+    clippy::all
+)]
 #[path = "../../../boards/demo-scene/src/lib.rs"]
 mod demo_scene;
 
