@@ -384,12 +384,20 @@ fn qemu_version() -> String {
 /// Code bytes per kernel symbol: the kernel plus every function it reaches by `bl`/`b.w` or
 /// through a function pointer in its literal pool, plus the constant objects those literal
 /// pools point into (each counted once).
+///
+/// Kernels that compile to the same code (e.g. a model's `Fast32` and `f32` kernels when every
+/// operation they use is the same) may be merged by LLVM into one body with several symbols at
+/// one address. The graph has one node per address, with every name found there, and every
+/// kernel name at a node gets that node's size: two kernels sharing one body are each reported
+/// with the whole of it (what either costs in flash alone; together they cost it once). A
+/// merged kernel that is left without any symbol is found by [`merged_kernel`].
 fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
     let file = object::File::parse(elf).map_err(|e| e.to_string())?;
     struct Sym {
         addr: u64,
         size: u64,
-        name: String,
+        /// Every symbol name at this address (more than one where bodies were merged).
+        names: Vec<String>,
         func: bool,
     }
     let mut syms: Vec<Sym> = file
@@ -398,15 +406,23 @@ fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
         .map(|s| Sym {
             addr: s.address() & !1,
             size: s.size(),
-            name: s
+            names: vec![s
                 .name()
                 .map(|n| format!("{:#}", rustc_demangle::demangle(n)))
-                .unwrap_or_default(),
+                .unwrap_or_default()],
             func: s.kind() == SymbolKind::Text,
         })
         .collect();
     syms.sort_by_key(|s| s.addr);
-    syms.dedup_by_key(|s| s.addr);
+    // One node per address (the first symbol's size and kind, as before), keeping the names of
+    // the others: `dedup_by` passes the later element first and drops it.
+    syms.dedup_by(|later, kept| {
+        let same = later.addr == kept.addr;
+        if same {
+            kept.names.append(&mut later.names);
+        }
+        same
+    });
     let find = |a: u64| -> Option<usize> {
         let i = syms.partition_point(|s| s.addr <= a);
         (i > 0 && a < syms[i - 1].addr + syms[i - 1].size).then(|| i - 1)
@@ -486,7 +502,12 @@ fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
     }
     let mut out = HashMap::new();
     for (i, s) in syms.iter().enumerate() {
-        if !(s.name.contains("::cases::k_") || s.name.contains("::points::s_")) {
+        let kernels: Vec<&String> = s
+            .names
+            .iter()
+            .filter(|n| n.contains("::cases::k_") || n.contains("::points::s_"))
+            .collect();
+        if kernels.is_empty() {
             continue;
         }
         let mut seen = HashSet::from([i]);
@@ -498,7 +519,10 @@ fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
                 }
             }
         }
-        out.insert(s.name.clone(), seen.iter().map(|&j| syms[j].size).sum());
+        let size: u64 = seen.iter().map(|&j| syms[j].size).sum();
+        for name in kernels {
+            out.insert(name.clone(), size);
+        }
     }
     Ok(out)
 }
@@ -511,6 +535,52 @@ fn kernel_symbol(sizes: &HashMap<String, u64>, model: &str, ty: &str) -> Option<
         let arg = rest.strip_suffix('>')?;
         (arg == ty || arg.ends_with(&format!("::{ty}"))).then_some(size)
     })
+}
+
+/// The kernel of `model` for the backend `name` when it has no symbol of its own: LLVM merges
+/// identical functions, and a kernel whose body is the same as another backend's (e.g. `f32`
+/// and `Fast32` where every operation the model uses is the same) is then replaced by it at
+/// every call and left without a symbol (it is internal, so no alias is kept). The twin is
+/// recognised from the firmware's own output: another backend on this target whose kernel
+/// for `model` has a symbol and whose calls took the same instructions and gave the same
+/// values, bit for bit, for every input. Its size is then the merged kernel's too (what either
+/// costs alone; together they cost it once). `None` if no backend or more than one size fits.
+fn merged_kernel(
+    sizes: &HashMap<String, u64>,
+    lines: &[Line],
+    short: &str,
+    name: &str,
+    model: &str,
+) -> Option<(&'static str, u64)> {
+    let calls = |backend: &str| -> Vec<(usize, u32, Vec<u64>)> {
+        let mut v: Vec<_> = lines
+            .iter()
+            .filter(|l| l.k.is_none() && l.backend == backend && l.model == model)
+            .map(|l| {
+                (
+                    l.input,
+                    l.count,
+                    l.value.iter().map(|x| x.to_bits()).collect(),
+                )
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let mine = calls(name);
+    if mine.is_empty() {
+        return None;
+    }
+    let twins: Vec<(&'static str, u64)> = backends()
+        .into_iter()
+        .filter(|b| b.name != name && b.targets.contains(&short))
+        .filter_map(|b| Some((b.name, kernel_symbol(sizes, model, b.symbol_type)?)))
+        .filter(|(b, _)| calls(b) == mine)
+        .collect();
+    match twins.as_slice() {
+        [first, rest @ ..] if rest.iter().all(|t| t.1 == first.1) => Some(*first),
+        _ => None,
+    }
 }
 
 #[derive(Default)]
@@ -701,7 +771,16 @@ fn check_target(
             let row = rows
                 .entry((short.to_owned(), b.name.to_owned(), mi))
                 .or_default();
-            row.code = kernel_symbol(&sizes, model, b.symbol_type);
+            row.code = kernel_symbol(&sizes, model, b.symbol_type).or_else(|| {
+                let (twin, size) = merged_kernel(&sizes, &lines, short, b.name, model)?;
+                println!(
+                    "{short} {}: {model}'s kernel merged by LLVM into {twin}'s (no symbol of \
+                     its own; the same instruction counts and values for every input): code \
+                     bytes from {twin}'s",
+                    b.name
+                );
+                Some(size)
+            });
             if row.code.is_none() {
                 failures.push(format!("{short} {}: no kernel symbol for {model}", b.name));
             }
