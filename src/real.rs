@@ -76,7 +76,7 @@ pub trait Real:
     const EPSILON: Self;
     /// The smallest positive value whose square and reciprocal square are both finite and
     /// normal: the models' threshold for degenerate distances. (The rescaled normalization of
-    /// `Fixed22` and [`Fast32`] treats vectors below it as zero; f32's and f64's give every
+    /// `Fixed22` treats vectors below it as zero; f32's, f64's and [`Fast32`]'s give every
     /// finite nonzero vector a direction: see [`Real::normalize3`].)
     const TINY: Self;
     /// The absolute resolution of the type: the spacing of its values wherever they lie, for
@@ -229,12 +229,12 @@ pub trait Real:
     /// `Some((v / |v|, |v|))` for a finite nonzero `v`, `None` otherwise: the normalization
     /// behind [`crate::Vec3::normalize_with_length`].
     ///
-    /// This default (`Fixed22`, [`Fast32`]) rescales by the largest component first
+    /// This default (`Fixed22`) rescales by the largest component first
     /// ([`Real::rescale3`]: fixed-point squares of small components vanish and those of large
     /// ones saturate), and a vector whose largest component is not above [`Real::TINY`] counts
     /// as zero. f32 and f64 override it with the lean form (`normalize3_lean` in this
     /// module): the squared length directly, rescaled by a power of two only when it under- or
-    /// overflows, so that every finite nonzero vector has a direction.
+    /// overflows, so that every finite nonzero vector has a direction; [`Fast32`] with f32's.
     #[inline(always)]
     fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
         let m = v[0].abs().max(v[1].abs()).max(v[2].abs());

@@ -87,6 +87,45 @@ fn f32_every_exponent_against_f64() {
     assert!(worst_len <= 2.0, "length {worst_len} ULP");
 }
 
+/// Fast32 normalizes with f32's operations: the same bits as f32 (checked against f64 above)
+/// for every vector of the same sweep over the whole f32 range, with and without the length,
+/// and the same refusals.
+#[test]
+fn fast32_normalizes_as_f32() {
+    let mut rng = Rng(0x5eed_fa32);
+    let mut tiny = 0u32;
+    for i in 0..200_000 {
+        let e = -150.0 + 278.0 * rng.unit();
+        let c: [f32; 3] = core::array::from_fn(|_| {
+            let spread = if i % 3 == 0 { 0.0 } else { -40.0 * rng.unit() };
+            (rng.signed() * 2f64.powf(e + spread)) as f32
+        });
+        let fast = Vec3::new(Fast32(c[0]), Fast32(c[1]), Fast32(c[2]));
+        let plain = Vec3::new(c[0], c[1], c[2]);
+        let bits = |u: Vec3<Fast32>| [u.x.0, u.y.0, u.z.0].map(f32::to_bits);
+        let want = plain.normalize_with_length();
+        let got = fast.normalize_with_length();
+        assert_eq!(
+            got.map(|(u, len)| (bits(u), len.0.to_bits())),
+            want.map(|(u, len)| ([u.x, u.y, u.z].map(f32::to_bits), len.to_bits())),
+            "{c:?}"
+        );
+        assert_eq!(
+            fast.normalize().map(bits),
+            plain.normalize().map(|u| [u.x, u.y, u.z].map(f32::to_bits)),
+            "{c:?}"
+        );
+        // Below the former rescaled form's threshold (`Real::TINY`), which refused them.
+        if want.is_some() && plain.max_abs() <= 1e-18 {
+            tiny += 1;
+        }
+    }
+    assert!(
+        tiny > 10_000,
+        "the sweep must reach vectors below TINY: {tiny}"
+    );
+}
+
 /// The length of `s` (components near 1) in double-double arithmetic, as `(hi, lo)`: the
 /// squares and their sum error-free (`mul_add` and two-sum), then one Newton correction of
 /// the square root. Within a few units of 2^-106, relative.
@@ -177,7 +216,7 @@ fn zero_infinite_and_nan_are_refused() {
     }
     check::<f32>();
     check::<f64>();
-    // Fast32 keeps the rescaled normalization (the trait's default; see `Real::normalize3`).
+    // Fast32 has f32's normalization (see `fast32_normalizes_as_f32`).
     check::<Fast32>();
     // The smallest subnormal has a direction.
     let t = f32::from_bits(1);

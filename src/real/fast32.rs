@@ -1,12 +1,13 @@
 //! `Fast32`: f32 with the crate's own cheap square root and arctangent.
 //!
 //! The per-sample work of every model is a handful of square roots (normalizing directions) and
-//! arctangents (edge angles, cap boundaries). With an FPU (Cortex-M4F) the approximations here
-//! replace libm's `sqrtf`/`atan2f` by a few dozen float operations and keep every model within
-//! 1/1024 of the f64 reference (asserted in `tests/`); the QEMU budget measures 10 to 20 % fewer
-//! instructions per call than `f32` there. Without an FPU (Cortex-M0) every float operation is a
-//! library call, and `Fast32` costs *more* than `f32` (measured: `hemi_const` 4039 against 3117
-//! instructions): use [`crate::Fixed22`] on such chips.
+//! arctangents (edge angles, cap boundaries). The approximations here replace `sqrtf`/`atan2f`
+//! by a few dozen float operations and keep every model within 1/1024 of the f64 reference
+//! (asserted in `tests/`). Measured (the QEMU budget, median instructions per call over the
+//! models): now that `f32` has the Cortex-M4F's `VSQRT.F32` and a reduced arctangent of its
+//! own, `Fast32` is no cheaper than `f32`: 0.95 to 1.41 times its count on the Cortex-M4F,
+//! 0.99 to 1.22 times on the Cortex-M0 (soft float; `hemi_const` 2416 against 2416). Use `f32`,
+//! or [`crate::Fixed22`] on chips without an FPU.
 //!
 //! Why not micromath: its `atan2` is off by up to 2.8e-3 rad and its `sqrt` by several
 //! percent (measured in this module's tests), which puts a four-edge polygon light past the
@@ -19,7 +20,11 @@
 //! | [`fast_atan2`] | octant reduction, odd minimax polynomial of degree 9 (Abramowitz & Stegun 4.4.49) | 1.2e-5 rad (1.17e-5 measured: the polynomial's 1e-5 plus f32 rounding) |
 //!
 //! `sin`/`cos` are only used when a light is built, never per sample, so `Fast32` uses libm's
-//! there; `exp`/`ln` (the shaping functions) are libm's too for now.
+//! there; `exp`/`ln` (the shaping functions) are libm's too for now. Vector normalization is
+//! f32's ([`Real::normalize3`]: the squared length, f32's square root, one division): on the
+//! Cortex-M4F its `VSQRT.F32` is cheaper than the rescaled form with [`fast_rsqrt`] (42
+//! against 119 instructions a call; 1761 against 3509 on the Cortex-M0), and exact to a few
+//! ULPs.
 
 use super::Real;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -221,6 +226,21 @@ impl Real for Fast32 {
     #[inline(always)]
     fn is_finite(self) -> bool {
         self.0.is_finite()
+    }
+    /// f32's lean normalization (the squared length directly, `sqrt` (`VSQRT.F32` on the
+    /// Cortex-M4F), one division; a power-of-two rescaling only when the squared length under-
+    /// or overflows), not the trait's rescaled default with [`fast_rsqrt`]: measured, a
+    /// non-inlined `Vec3::normalize` takes 42 instructions instead of 119 on the Cortex-M4F
+    /// and 1761 instead of 3509 on the Cortex-M0, and every finite nonzero vector has a
+    /// direction, as in f32.
+    #[inline(always)]
+    fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
+        <f32 as Real>::normalize3(v.map(|x| x.0)).map(|(u, len)| (u.map(Fast32), Fast32(len)))
+    }
+    /// [`Real::normalize3`] without the length (f32's, as there).
+    #[inline(always)]
+    fn unit3(v: [Self; 3]) -> Option<[Self; 3]> {
+        <f32 as Real>::unit3(v.map(|x| x.0)).map(|u| u.map(Fast32))
     }
 }
 
