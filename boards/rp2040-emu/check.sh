@@ -9,7 +9,9 @@
 # lit_scene_dual_core/ (emulated frames, .rgb565 and .png), the run logs, and frames.md (the
 # cycles table, for README.md), frames.csv (the same frames, per stage, for `host-sim budget
 # --scene --check`), and calibration.csv (the `calibrate` binary's unit costs, for `host-sim
-# budget --calibrate`). Exits non-zero if a run fails or a frame differs.
+# budget --calibrate`), and scenes.csv (the `scene_file` binary's frame of each scene file of
+# demo_scene::scenes, for `host-sim budget --scene host-sim/scenes/NAME.toml --check`). Exits
+# non-zero if a run fails or a frame differs.
 set -euo pipefail
 
 frames=${1:-2}
@@ -75,6 +77,20 @@ set -e
 grep -E '^(\[defmt\]|error:)' "$out/calibrate.log" || true
 if [ $run_status -ne 0 ] || ! node "$here/report.mjs" costs "$out/calibrate.log" >"$out/calibration.csv"; then
   echo "calibrate: the emulator run failed (log: $out/calibrate.log)"
+  status=1
+fi
+echo "== scene_file: the scene files of host-sim/scenes/ ($out/scenes.csv; --features scene-file, target dir boards/rp2040-st7789/target/emu-scenes)"
+(cd "$firmware" && env -u CARGO_TARGET_DIR cargo build --release --features emulator,scene-file --bin scene_file --target-dir target/emu-scenes)
+set +e
+node "$here/run.mjs" --elf "$firmware/target/emu-scenes/thumbv6m-none-eabi/release/scene_file" --until "scene files done" \
+  >"$out/scene_file.log" 2>&1
+run_status=$?
+set -e
+grep -E '^(\[defmt\]|error:)' "$out/scene_file.log" || true
+if [ $run_status -ne 0 ] || grep -q ' ERROR ' "$out/scene_file.log" ||
+  ! node "$here/report.mjs" csv "$out/scene_file.log" >"$out/scenes.csv" ||
+  [ "$(wc -l <"$out/scenes.csv")" -lt 3 ]; then
+  echo "scene_file: the emulator run failed or logged no scene frames (log: $out/scene_file.log)"
   status=1
 fi
 if [ $status -eq 0 ]; then echo "rp2040-emu: all frames identical to the host render"; fi

@@ -150,17 +150,20 @@ function csv(logs) {
     const s = summaryOf(log);
     const name = basename(s.elf);
     for (const l of s.defmt) {
-      const m = (l.text ?? '').match(/^frame (\d+): (\d+) us[^(]*\(([^)]*)\), (\d+) shader calls[^,]*, (\d+) pixels, (\d+) triangle setups/);
+      // `frame N: ...` (the demo firmwares) or `scene NAME frame N: ...` (scene_file: one
+      // frame of each scene file, named `scene:NAME` here).
+      const m = (l.text ?? '').match(/^(?:scene (\S+) )?frame (\d+): (\d+) us[^(]*\(([^)]*)\), (\d+) shader calls[^,]*, (\d+) pixels, (\d+) triangle setups/);
       if (!m) continue;
-      const n = Number(m[1]);
-      const stages = new Map(m[3].split(', ').map((part) => {
+      const scene = m[1];
+      const n = Number(m[2]);
+      const stages = new Map(m[4].split(', ').map((part) => {
         const p = part.match(/^(.*) (\d+)$/);
         return p ? [p[1], Number(p[2]) * 125] : [part, 0];
       }));
-      const frame = s.frames.find((f) => f.n === n);
+      const frame = scene ? undefined : s.frames.find((f) => f.n === n);
       const get = (k) => stages.get(k) ?? 0;
-      out.push([name, s.dual ? 2 : 1, n, frame ? frame.cycles : '', get('setup'), get('transform'), get('shade'), get('raster'),
-        get('flush'), get('waiting for core 1'), m[4], m[5], m[6]].join(','));
+      out.push([scene ? `scene:${scene}` : name, s.dual ? 2 : 1, n, frame ? frame.cycles : '', get('setup'), get('transform'), get('shade'),
+        get('raster'), get('flush'), get('waiting for core 1'), m[5], m[6], m[7]].join(','));
     }
   }
   console.log(out.join('\n'));

@@ -90,7 +90,7 @@ pub struct BudgetArgs {
     pub check: Option<PathBuf>,
     /// With --scene: write the scene, as written, as Rust source for the boards' scene player
     /// (`boards/demo-scene/src/spec.rs`: a `SceneSpec` constant) into OUT.rs, and nothing
-    /// else. With --check, fail instead if OUT.rs differs from it.
+    /// else (`boards/demo-scene/src/scenes/` holds the scenes the boards render).
     #[arg(long, value_name = "OUT.rs", requires = "scene")]
     pub emit_spec: Option<PathBuf>,
     /// Write host-sim/costs.csv (the unit costs of --scene) from the emulators' calibration

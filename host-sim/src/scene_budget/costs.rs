@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::work::Work;
+use super::work::{LightCalls, Work};
 
 /// The committed cost table.
 pub const COSTS_CSV: &str = include_str!("../../costs.csv");
@@ -143,6 +143,11 @@ impl Costs {
         self.used_derived.replace(false)
     }
 
+    /// `item` in `backend`, if the table has it.
+    fn get(&self, backend: &str, item: &str) -> Option<f64> {
+        self.need(backend, item).ok()
+    }
+
     /// `item` in `backend`, or the error naming it.
     fn need(&self, backend: &str, item: &str) -> Result<f64, String> {
         match self.items.get(&(backend.to_owned(), item.to_owned())) {
@@ -220,6 +225,65 @@ pub fn call_cost(
     Ok(c)
 }
 
+/// The cost of `calls` shader calls of an object under `lights`, of which `per_light[i]`
+/// counts, for light `i`, the calls that gave light and those that gave none (see
+/// [`LightCalls`]): the material's own work per call, plus each light's `:lit` cost per lit
+/// call and `:dark` cost per dark call (each falling back to the light's cost over all the
+/// calibration's points where the split was not measured). Without per-light counts
+/// (`per_light` empty), `calls` times [`call_cost`].
+///
+/// # Errors
+/// A missing cost.
+pub fn calls_cost(
+    costs: &Costs,
+    backend: &str,
+    lights: &[LightCost],
+    finish: Finish,
+    calls: u64,
+    per_light: &[LightCalls],
+) -> Result<f64, String> {
+    let Finish::Lit { specular, m } = finish else {
+        return Ok(0.0);
+    };
+    if per_light.len() != lights.len() || calls == 0 {
+        return Ok(calls as f64 * call_cost(costs, backend, lights, finish)?);
+    }
+    let own = costs.need(
+        backend,
+        if specular {
+            "lit_specular"
+        } else {
+            "lit_matte"
+        },
+    )?;
+    let mut c = calls as f64 * own;
+    // A light's cost of `what` on its lit (0) or dark (1) calls.
+    let split = |what: &str, kind: &str, dark: usize| -> Result<f64, String> {
+        let sub = ["lit", "dark"][dark];
+        match costs.get(backend, &format!("{what}:{kind}:{sub}")) {
+            Some(x) => Ok(x),
+            None => costs.need(backend, &format!("{what}:{kind}")),
+        }
+    };
+    for (l, n) in lights.iter().zip(per_light) {
+        let edges = if l.kind == "polygon" {
+            l.vertices.max(3) as f64 / 4.0
+        } else {
+            1.0
+        };
+        for s in 0..2 {
+            c += edges * n.diffuse[s] as f64 * split("diffuse", &l.kind, s)?;
+            if specular {
+                let p8 = split("phong8", &l.kind, s)?;
+                let p32 = split("phong32", &l.kind, s)?;
+                let at = p8 + (p32 - p8) * (f64::from(m) - 8.0) / 24.0;
+                c += edges * n.phong[s] as f64 * at.max(p8.min(p32) * 0.5);
+            }
+        }
+    }
+    Ok(c)
+}
+
 /// A predicted frame, per stage (setup is 0: a scene file's lights do not change).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Prediction {
@@ -274,13 +338,16 @@ pub fn predict(
     let mut shade = 0.0;
     let mut raster = work.bands as f64 * costs.need(b, "band_clear")?;
     for (o, f) in work.objects.iter().zip(finishes) {
-        let call = call_cost(costs, b, lights, *f)?;
         let per_vertex = match f {
             Finish::Emissive => shade_flat,
             Finish::Lit { .. } => shade_vertex,
         };
-        shade += o.vertex_calls as f64 * (per_vertex + call);
-        raster += o.setups as f64 * tri + o.pixels as f64 * px + o.pixel_calls as f64 * (pp + call);
+        shade += o.vertex_calls as f64 * per_vertex
+            + calls_cost(costs, b, lights, *f, o.vertex_calls, &o.vertex_lights)?;
+        raster += o.setups as f64 * tri
+            + o.pixels as f64 * px
+            + o.pixel_calls as f64 * pp
+            + calls_cost(costs, b, lights, *f, o.pixel_calls, &o.pixel_lights)?;
     }
     let mut flush = work.bytes as f64 * costs.need(b, "flush_byte")?;
     let cores = f64::from(chip.cores.max(1));

@@ -791,7 +791,7 @@ fn stem(path: &Path) -> String {
 /// with `--check`, compares and fails beyond the tolerance.
 pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
     if let Some(out) = &args.emit_spec {
-        return emit_spec_main(scene, out, args.check.is_some());
+        return emit_spec_main(scene, out);
     }
     match run(args, scene) {
         Ok((paths, ok)) => {
@@ -814,41 +814,21 @@ pub fn main(args: &BudgetArgs, scene: &Path) -> ExitCode {
     }
 }
 
-/// `--emit-spec OUT.rs`: writes (or with `check`, compares) the scene's Rust source for the
-/// boards.
-fn emit_spec_main(scene: &Path, out: &Path, check: bool) -> ExitCode {
+/// `--emit-spec OUT.rs`: writes the scene's Rust source for the boards.
+fn emit_spec_main(scene: &Path, out: &Path) -> ExitCode {
     let made = std::fs::read_to_string(scene)
         .map_err(|e| format!("{}: {e}", scene.display()))
-        .and_then(|src| crate::scene_file::emit_spec(&scene.display().to_string(), &src));
-    let source = match made {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("host-sim budget: {e}");
-            return ExitCode::FAILURE;
-        }
-    };
-    if check {
-        let now = std::fs::read_to_string(out).unwrap_or_default();
-        if now != source {
-            eprintln!(
-                "host-sim budget: {} is not what --emit-spec writes for {}: regenerate it (host-sim budget --scene {} --emit-spec {})",
-                out.display(),
-                scene.display(),
-                scene.display(),
-                out.display()
-            );
-            return ExitCode::FAILURE;
-        }
-        println!("{} is up to date", out.display());
-        return ExitCode::SUCCESS;
-    }
-    match std::fs::write(out, source) {
+        .and_then(|src| crate::scene_file::emit_spec(&scene.display().to_string(), &src))
+        .and_then(|source| {
+            std::fs::write(out, source).map_err(|e| format!("{}: {e}", out.display()))
+        });
+    match made {
         Ok(()) => {
             println!("{}", out.display());
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("host-sim budget: {}: {e}", out.display());
+            eprintln!("host-sim budget: {e}");
             ExitCode::FAILURE
         }
     }
@@ -929,8 +909,8 @@ mod demo_scene;
 
 #[cfg(test)]
 mod tests {
-    use super::costs::{call_cost, predict, Costs, Finish, LightCost, CHIPS};
-    use super::work::{ObjectWork, Work};
+    use super::costs::{call_cost, calls_cost, predict, Costs, Finish, LightCost, CHIPS};
+    use super::work::{LightCalls, ObjectWork, Work};
     use super::*;
 
     use super::demo_scene;
@@ -952,6 +932,11 @@ mod tests {
             ("vertex_lit", 300.0),
             ("vertex_unlit", 200.0),
             ("shade_vertex", 50.0),
+            ("shade_vertex_flat", 30.0),
+            ("diffuse:polygon:lit", 1500.0),
+            ("diffuse:polygon:dark", 200.0),
+            ("phong8:polygon:lit", 3000.0),
+            ("phong8:polygon:dark", 100.0),
             ("band_clear", 7000.0),
             ("triangle", 2000.0),
             ("pixel", 80.0),
@@ -1022,6 +1007,60 @@ mod tests {
     }
 
     #[test]
+    fn lit_and_dark_calls_take_their_own_costs_where_measured() {
+        let c = synthetic();
+        let lights = [
+            LightCost {
+                kind: "polygon".into(),
+                vertices: 4,
+            },
+            LightCost {
+                kind: "ambient".into(),
+                vertices: 0,
+            },
+        ];
+        let per_light = [
+            LightCalls {
+                diffuse: [3, 2],
+                phong: [1, 4],
+            },
+            LightCalls {
+                diffuse: [5, 0],
+                phong: [0, 5],
+            },
+        ];
+        let matte = Finish::Lit {
+            specular: false,
+            m: 8,
+        };
+        // The material's own 10 per call; the polygon's split costs; the ambient light has no
+        // split: its cost over all points (1), lit or dark.
+        assert_eq!(
+            calls_cost(&c, "f32", &lights, matte, 5, &per_light).unwrap(),
+            5.0 * 10.0 + 3.0 * 1500.0 + 2.0 * 200.0 + 5.0 * 1.0
+        );
+        // Phong at m = 8: the polygon's split phong8; phong32 has no split (4000 for both),
+        // and at m = 8 only phong8 counts.
+        let shiny = Finish::Lit {
+            specular: true,
+            m: 8,
+        };
+        assert_eq!(
+            calls_cost(&c, "f32", &lights, shiny, 5, &per_light).unwrap(),
+            5.0 * 20.0 + 3.0 * 1500.0 + 2.0 * 200.0 + 5.0 + 3000.0 + 4.0 * 100.0
+        );
+        // Without per-light counts: every call at call_cost.
+        assert_eq!(
+            calls_cost(&c, "f32", &lights, matte, 5, &[]).unwrap(),
+            5.0 * call_cost(&c, "f32", &lights, matte).unwrap()
+        );
+        assert_eq!(
+            calls_cost(&c, "f32", &lights, Finish::Emissive, 5, &per_light).unwrap(),
+            0.0
+        );
+    }
+
+    #[test]
     fn a_frame_is_its_counted_work_times_the_unit_costs() {
         let c = synthetic();
         let chip = CHIPS.iter().find(|c| c.name == "stm32f411").unwrap();
@@ -1059,7 +1098,8 @@ mod tests {
         ];
         let p = predict(chip, &c, "f32", &work, &finishes, &lights).unwrap();
         assert_eq!(p.transform, 100.0 * 300.0 + 10.0 * 200.0);
-        assert_eq!(p.shade, 40.0 * (50.0 + 10.0 + 1000.0) + 5.0 * 50.0);
+        // The emissive object's vertices at the flat shader's cost.
+        assert_eq!(p.shade, 40.0 * (50.0 + 10.0 + 1000.0) + 5.0 * 30.0);
         assert_eq!(p.raster, 15.0 * 7000.0 + 34.0 * 2000.0 + 1200.0 * 80.0);
         assert_eq!(p.flush, 115_200.0 * 1.5);
         // Two cores halve shade and raster and send every band from core 0 (twice the flush).

@@ -3,16 +3,77 @@
 //! band into a frame of RGB888), with the work each stage does per object. The same code path
 //! as `boards/demo-scene` (the firmware's frame), so that its counts are the firmware's.
 
+use std::cell::RefCell;
+
 use arealight::raster::{
     Band, Cull, DrawOptions, EncodeTable, Lit, Mesh, PreparedMesh, PreparedVertex, RasterError,
     Rgb888, Shader, Shading,
 };
-use arealight::{Real, Rgb, Vec3};
+use arealight::{Illuminant, PhongLobe, Real, Rgb, Vec3};
 
-use crate::scenes::{Scene, Surface};
+use crate::scenes::{Lights, Scene, Surface};
+
+/// One light's calls in one stage of one object: its `diffuse` and its `phong` calls, each
+/// split into those that gave light (`[0]`: a non-zero channel) and those that gave none
+/// (`[1]`: the early exits, which cost less: see `demo_scene::calibrate`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LightCalls {
+    /// `diffuse` calls: [lit, dark].
+    pub diffuse: [u64; 2],
+    /// `phong` calls: [lit, dark].
+    pub phong: [u64; 2],
+}
+
+/// The scene's lights, counting each light's calls ([`LightCalls`]); the same sums, in the
+/// same order, as [`Lights`] (so the frame is the same).
+struct Counting<'a, T> {
+    lights: &'a Lights<T>,
+    calls: RefCell<Vec<LightCalls>>,
+}
+
+impl<'a, T> Counting<'a, T> {
+    fn new(lights: &'a Lights<T>) -> Self {
+        Counting {
+            lights,
+            calls: RefCell::new(vec![LightCalls::default(); lights.0.len()]),
+        }
+    }
+}
+
+/// 0 for a colour with light in a channel, 1 for black.
+fn dark<T: Real>(c: Rgb<T>) -> usize {
+    usize::from(!(c.r > T::ZERO || c.g > T::ZERO || c.b > T::ZERO))
+}
+
+impl<T: Real> Illuminant<T> for Counting<'_, T> {
+    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        let mut calls = self.calls.borrow_mut();
+        self.lights
+            .0
+            .iter()
+            .zip(calls.iter_mut())
+            .fold(Rgb::splat(T::ZERO), |a, (l, c)| {
+                let d = l.diffuse(p, n);
+                c.diffuse[dark(d)] += 1;
+                a.add(d)
+            })
+    }
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        let mut calls = self.calls.borrow_mut();
+        self.lights
+            .0
+            .iter()
+            .zip(calls.iter_mut())
+            .fold(Rgb::splat(T::ZERO), |a, (l, c)| {
+                let d = l.phong(lobe, p, r);
+                c.phong[dark(d)] += 1;
+                a.add(d)
+            })
+    }
+}
 
 /// What one object cost a frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct ObjectWork {
     /// Vertices transformed with their normals (lit objects).
     pub vertices_lit: u64,
@@ -26,6 +87,10 @@ pub struct ObjectWork {
     pub pixels: u64,
     /// Triangle setups (per band, clipped pieces counted).
     pub setups: u64,
+    /// Per light of the scene, its calls at the vertices (empty for an emissive object).
+    pub vertex_lights: Vec<LightCalls>,
+    /// Per light of the scene, its calls at the pixels (empty for an emissive object).
+    pub pixel_lights: Vec<LightCalls>,
 }
 
 /// What a frame cost: per object, and the frame's bands.
@@ -86,6 +151,12 @@ pub fn render<T: Real + 'static>(
     };
     let mut prepared = Vec::new();
     let mut options = Vec::new();
+    // Each object's lights, counting its calls at the vertices, then at the pixels.
+    let counting: Vec<[Counting<'_, T>; 2]> = scene
+        .objects
+        .iter()
+        .map(|_| [Counting::new(&scene.lights), Counting::new(&scene.lights)])
+        .collect();
     for (i, ((o, mesh), store)) in scene
         .objects
         .iter()
@@ -114,7 +185,7 @@ pub fn render<T: Real + 'static>(
             Surface::Lit(m) => {
                 p.transform(cam, &o.xf);
                 ow.vertices_lit = n;
-                p.shade(cam, &Lit::new(&scene.lights, m), &opts)
+                p.shade(cam, &Lit::new(&counting[i][0], m), &opts)
             }
             Surface::Emissive(c) => {
                 p.transform_unlit(cam, &o.xf);
@@ -146,7 +217,7 @@ pub fn render<T: Real + 'static>(
         {
             let stats = match &o.surface {
                 Surface::Lit(m) => {
-                    p.draw(cam, &mut band, &Lit::new(&scene.lights, m), opts, &table)?
+                    p.draw(cam, &mut band, &Lit::new(&counting[i][1], m), opts, &table)?
                 }
                 Surface::Emissive(c) => p.draw(cam, &mut band, &Glow(*c), opts, &table)?,
                 Surface::Custom(_) => return Err(RasterError::BadParameter("custom shader")),
@@ -161,6 +232,16 @@ pub fn render<T: Real + 'static>(
         work.bands += 1;
         work.bytes += 2 * keep as u64;
         y0 = y0.saturating_add(rows);
+    }
+    for (o, (ow, [v, px])) in scene
+        .objects
+        .iter()
+        .zip(work.objects.iter_mut().zip(counting))
+    {
+        if matches!(o.surface, Surface::Lit(_)) {
+            ow.vertex_lights = v.calls.into_inner();
+            ow.pixel_lights = px.calls.into_inner();
+        }
     }
     Ok((frame, work))
 }
