@@ -315,6 +315,18 @@ pub trait Real:
     fn mul_u32(self, n: u32) -> Self {
         self * Self::from_u32(n)
     }
+    /// `round(self * n * 2^frac)` (`frac <= 30`, ties up) as an `i32`, saturating (NaN gives
+    /// 0): a value scaled by an integer straight into a fixed-point integer, without `n` or the
+    /// product having to fit the type. The float types compute `(self * n).to_fixed_i32(frac)`
+    /// (the product rounded once in the type, then scaled by the power of two and rounded to
+    /// an integer: 2 roundings, a product and a conversion); [`Fixed22`] computes it
+    /// exactly from its bits (one 32 x 32 -> 64 product and a rounding shift), so neither
+    /// `n >= 512` nor a product beyond its range of +-512 saturates. The rasterizer's viewport
+    /// transform (normalized device coordinates times the viewport size in sub-pixels).
+    #[inline(always)]
+    fn mul_u32_to_fixed_i32(self, n: u32, frac: u32) -> i32 {
+        (self * Self::from_u32(n)).to_fixed_i32(frac)
+    }
     /// `self * self`.
     #[inline(always)]
     fn sq(self) -> Self {

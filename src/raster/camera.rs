@@ -134,6 +134,15 @@ impl<T: Real> Affine<T> {
     }
 }
 
+/// `width / height` from both sides scaled by `2^-12` (at most 1 for sides up to
+/// [`MAX_VIEWPORT`]): the floats' quotient is the same (power-of-two scaling is exact), and
+/// fixed point never materializes a side of 512 or more (which would saturate).
+fn aspect<T: Real>(width: u16, height: u16) -> T {
+    const SIDE_SHIFT: u32 = 12;
+    T::from_fixed_i32(i32::from(width), SIDE_SHIFT)
+        / T::from_fixed_i32(i32::from(height), SIDE_SHIFT)
+}
+
 /// The camera's projection.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection<T> {
@@ -206,7 +215,7 @@ impl<T: Real> Camera<T> {
         }
         let right = side.normalize().ok_or(parallel)?;
         let up = right.cross(forward);
-        let aspect = T::from_u32(width as u32) / T::from_u32(height as u32);
+        let aspect = aspect::<T>(width, height);
         let (perspective, sy) = match projection {
             Projection::Perspective { fov_y } => {
                 if !fov_y.is_finite() {
@@ -269,7 +278,7 @@ impl<T: Real> Camera<T> {
         if width == 0 || height == 0 || width > MAX_VIEWPORT || height > MAX_VIEWPORT {
             return Err(RasterError::BadSize("viewport"));
         }
-        self.sx = self.sy / (T::from_u32(width as u32) / T::from_u32(height as u32));
+        self.sx = self.sy / aspect::<T>(width, height);
         self.width = width;
         self.height = height;
         Ok(self)
@@ -317,20 +326,44 @@ impl<T: Real> Camera<T> {
     }
 
     /// The pixel coordinates `(x, y)` (`y` down, pixel centres at `i + 0.5`) of a world point
-    /// in front of the camera, or `None` behind the near plane.
+    /// in front of the camera, or `None` behind the near plane or where a coordinate does not
+    /// fit the type (never for the float types; [`Fixed22`](crate::Fixed22): at 512 pixels
+    /// and beyond, or below -512: its range). Accuracy: the float types round
+    /// `(x_ndc + 1) width / 2` once (as before); fixed point is exact from its normalized device
+    /// coordinates. Cost: a clip transform, a reciprocal, two `f64` products.
     pub fn project(&self, p: Vec3<T>) -> Option<(T, T)> {
         let c = self.clip(p);
         if !(c[2] >= self.near) {
             return None;
         }
-        Some(self.screen_xy(c))
+        let iw = T::ONE / c[3];
+        // (ndc + 1) and w/2 are exact in f64, their product is rounded once (to the type by
+        // `from_f64`), as the type's own product would round it.
+        let x = (c[0] * iw + T::ONE).to_f64() * (f64::from(self.width) * 0.5);
+        let y = (T::ONE - c[1] * iw).to_f64() * (f64::from(self.height) * 0.5);
+        let (xt, yt) = (T::from_f64(x), T::from_f64(y));
+        if T::RESOLUTION > T::ZERO && (xt.to_f64() != x || yt.to_f64() != y) {
+            // A fixed-point type rounds such a product exactly unless it saturated.
+            return None;
+        }
+        Some((xt, yt))
     }
 
+    /// The snapped screen position (sub-pixel units, `y` down) of clip coordinates `c` with
+    /// `w > 0`, `1/w`, and whether the normalized device coordinates are finite. The viewport
+    /// transform runs in sub-pixel integers ([`Real::mul_u32_to_fixed_i32`]): no value of the
+    /// type exceeds the normalized device coordinates (`|x| <= 4 w` in the guard band), so
+    /// fixed point draws any viewport up to [`MAX_VIEWPORT`] exactly from them, while the
+    /// float types give the same bits as `((x_ndc + 1) width / 2)` snapped. Beyond the guard
+    /// band (the band test's unclipped vertices) the coordinates saturate monotonically.
     #[inline]
-    pub(super) fn screen_xy(&self, c: [T; 4]) -> (T, T) {
+    pub(super) fn screen_fixed(&self, c: &[T; 4]) -> (FixedPoint, T, bool) {
         let iw = T::ONE / c[3];
-        let hw = T::from_u32(self.width as u32) * T::HALF;
-        let hh = T::from_u32(self.height as u32) * T::HALF;
-        ((c[0] * iw + T::ONE) * hw, (T::ONE - c[1] * iw) * hh)
+        let (nx, ny) = (c[0] * iw, c[1] * iw);
+        // round(16 (n + 1) w / 2) = round(8 (n + 1) w).
+        let half = super::edge::SUBPIXEL_BITS - 1;
+        let x = (nx + T::ONE).mul_u32_to_fixed_i32(u32::from(self.width), half);
+        let y = (T::ONE - ny).mul_u32_to_fixed_i32(u32::from(self.height), half);
+        (FixedPoint::new(x, y), iw, nx.is_finite() && ny.is_finite())
     }
 }

@@ -4,22 +4,6 @@
 use super::clip::{clip_polygon, ClipVert, MAX_CLIPPED};
 use super::*;
 
-/// `floor(x)` of an `f64` that fits an `i32` (the pipeline's screen coordinates do).
-#[inline]
-pub(super) fn floor_i32(x: f64) -> i32 {
-    let t = x as i32;
-    if (t as f64) > x {
-        t - 1
-    } else {
-        t
-    }
-}
-
-#[inline]
-pub(super) fn snap<T: Real>(x: T) -> i32 {
-    floor_i32(x.to_f64() * SUBPIXEL as f64 + 0.5)
-}
-
 /// Draws `mesh` (through `transform`) with `shader` into `band`: every triangle clipped to the
 /// band's rows, depth-tested if the band has a depth band.
 ///
@@ -96,9 +80,9 @@ where
         let all_in = (0..3).all(|k| (0..6).all(|pl| d[k][pl] >= T::ZERO));
         // Band test on the screen rows (conservative by a pixel), before any shading.
         if d.iter().all(|dk| dk[0] >= T::ZERO) {
-            let ys: [f64; 3] = core::array::from_fn(|k| camera.screen_xy(cv[k].c).1.to_f64());
+            let ys: [i32; 3] = core::array::from_fn(|k| camera.screen_fixed(&cv[k].c).0.y);
             let (lo, hi) = (ys[0].min(ys[1]).min(ys[2]), ys[0].max(ys[1]).max(ys[2]));
-            if hi < row0 as f64 - 1.0 || lo > row1 as f64 + 1.0 {
+            if hi < (row0 - 1) * SUBPIXEL || lo > (row1 + 1) * SUBPIXEL {
                 continue;
             }
         }
@@ -109,8 +93,7 @@ where
             if all_in {
                 let mut fp = [FixedPoint::default(); 3];
                 for k in 0..3 {
-                    let (x, y) = camera.screen_xy(cv[k].c);
-                    fp[k] = FixedPoint::new(snap(x), snap(y));
+                    fp[k] = camera.screen_fixed(&cv[k].c).0;
                 }
                 if EdgeTriangle::new(fp, opts.cull).is_none() {
                     continue;
@@ -172,12 +155,12 @@ pub(super) fn raster_triangle<T, P, S>(
         if !(c[3] > T::ZERO) {
             return;
         }
-        let (x, y) = camera.screen_xy(c);
-        if !(x.is_finite() && y.is_finite()) {
+        let (p, w, finite) = camera.screen_fixed(&c);
+        if !finite {
             return;
         }
-        fp[k] = FixedPoint::new(snap(x), snap(y));
-        iw[k] = T::ONE / c[3];
+        fp[k] = p;
+        iw[k] = w;
     }
     let Some(tri) = EdgeTriangle::new(fp, opts.cull) else {
         return;

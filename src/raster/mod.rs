@@ -11,7 +11,11 @@
 //!    viewport) is dropped; one that crosses them is clipped (Sutherland-Hodgman, at most 9
 //!    vertices, a fan of triangles). Every intersection is computed from the inside vertex
 //!    toward the outside one, so two triangles that share an edge clip it at the same point.
-//! 3. **Edges.** Vertices are snapped to 1/16 pixel and the three edge functions are exact
+//! 3. **Edges.** Vertices are snapped to 1/16 pixel (the viewport transform from normalized
+//!    device coordinates runs in these sub-pixel integers, [`Real::mul_u32_to_fixed_i32`], so
+//!    fixed point, whose range is +-512, draws viewports up to [`MAX_VIEWPORT`] with their
+//!    guard band; `tests/raster_fixed.rs` checks Fixed22's frames against f64's up to
+//!    1024 x 1024) and the three edge functions are exact
 //!    integers ([`edge`]): a pixel is drawn when its centre is inside, or on a top or left
 //!    edge. Shared edges have no cracks and no pixel drawn twice, and the pixels and their
 //!    weights do not depend on which rows are being drawn, so rendering a frame in bands gives

@@ -545,23 +545,13 @@ fn project<T: Real>(
     b: T,
     inv_range: T,
 ) -> (FixedPoint, i32, T) {
-    let iw = T::ONE / c[3];
-    let hw = T::from_u32(camera.width as u32) * T::HALF;
-    let hh = T::from_u32(camera.height as u32) * T::HALF;
-    let (x, y) = ((c[0] * iw + T::ONE) * hw, (T::ONE - c[1] * iw) * hh);
+    let (fp, iw, _) = camera.screen_fixed(c);
     let q = if camera.perspective {
         a - b * iw
     } else {
         (c[2] - camera.near) * inv_range
     };
-    (
-        FixedPoint::new(
-            x.to_fixed_i32(super::edge::SUBPIXEL_BITS),
-            y.to_fixed_i32(super::edge::SUBPIXEL_BITS),
-        ),
-        q.clamp01().to_fixed_i32(DEPTH_FRAC),
-        iw,
-    )
+    (fp, q.clamp01().to_fixed_i32(DEPTH_FRAC), iw)
 }
 
 // (Here rather than in `scan`: it reads `PreparedVertex`'s fields.)

@@ -380,4 +380,22 @@ impl Real for Fixed22 {
     fn mul_u32(self, n: u32) -> Self {
         Fixed22::from_bits(mul_u32_bits(self.to_bits(), n))
     }
+    /// Exact: `bits n` as a 64-bit product (`n` clamped to `2^31 - 1`), shifted right by
+    /// `22 - frac` rounding half up (or left by `frac - 22`), clamped to `i32`.
+    #[inline(always)]
+    fn mul_u32_to_fixed_i32(self, n: u32, frac: u32) -> i32 {
+        let p = wide_mul(self.to_bits(), n.min(i32::MAX as u32) as i32);
+        let frac = frac.min(30);
+        let v = if frac <= FRAC {
+            let sh = FRAC - frac;
+            if sh == 0 {
+                p
+            } else {
+                (p >> sh) + ((p >> (sh - 1)) & 1)
+            }
+        } else {
+            p.clamp(-(1 << 40), 1 << 40) << (frac - FRAC)
+        };
+        v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+    }
 }
