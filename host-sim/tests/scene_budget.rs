@@ -118,3 +118,110 @@ fn an_unknown_chip_is_an_error_naming_the_chips() {
         "{err}"
     );
 }
+
+/// A floor over a point light far below it (beyond its bounding sphere: `Scene::prepare` drops
+/// it for the floor) and under a sphere light.
+const CULLED: &str = r#"
+[camera]
+eye = [0.0, 2.0, 3.0]
+target = [0.0, 0.0, 0.0]
+width = 120
+height = 120
+
+[[light]]
+kind = "point"
+position = [0.0, -5.0, 0.0]
+
+[[light]]
+kind = "sphere"
+center = [0.0, 2.0, 0.0]
+radius = 0.3
+
+[[material]]
+name = "m"
+diffuse = [0.5, 0.5, 0.5]
+
+[[mesh]]
+kind = "plane"
+size = [3.0, 3.0]
+cells = [4, 4]
+material = "m"
+gouraud = true
+"#;
+
+/// The CSV rows of `scene` on `chip`: (backend, shading) -> (frame, mean error).
+fn budget_rows(scene: &Path, chip: &str, dir: &Path) -> Vec<(String, String, f64, f64)> {
+    let out = Command::new(env!("CARGO_BIN_EXE_host-sim"))
+        .arg("budget")
+        .arg("--scene")
+        .arg(scene)
+        .args(["--chip", chip, "--out"])
+        .arg(dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stem = scene.file_stem().unwrap().to_string_lossy().into_owned();
+    let csv = std::fs::read_to_string(dir.join(format!("{stem}-{chip}.csv"))).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |n: &str| header.iter().position(|h| *h == n).unwrap();
+    csv.lines()
+        .skip(1)
+        .map(|l| {
+            // The shading is the one quoted field.
+            let (head, rest) = l.split_once(",\"").unwrap();
+            let (shading, tail) = rest.split_once("\",").unwrap();
+            let f: Vec<&str> = head.split(',').chain([""]).chain(tail.split(',')).collect();
+            (
+                f[col("backend")].to_owned(),
+                shading.to_owned(),
+                f[col("frame")].parse().unwrap(),
+                f[col("mean_err")].parse().unwrap(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn culling_and_hermite_are_options_with_their_own_costs() {
+    let dir = scratch("variants");
+    let scene = dir.join("culled.toml");
+    std::fs::write(&scene, CULLED).unwrap();
+    let rows = budget_rows(&scene, "stm32f411", &dir);
+    let find = |shading: &str| {
+        rows.iter()
+            .find(|r| r.0 == "f32" && r.1 == shading)
+            .unwrap_or_else(|| panic!("no f32 row {shading:?} in {rows:?}"))
+    };
+    // Culling skips the point light's calls on the floor: the same frame (the same error),
+    // fewer instructions; the most where every pixel calls the lights.
+    for (plain, culled) in [
+        (
+            "Gouraud (as written)",
+            "Gouraud (as written), lights culled per object",
+        ),
+        ("per pixel", "per pixel, lights culled per object"),
+    ] {
+        let (a, b) = (find(plain), find(culled));
+        assert_eq!(a.3, b.3, "{plain}: the error must not change");
+        assert!(b.2 < a.2, "{plain}: {} is not below {}", b.2, a.2);
+    }
+    let (a, b) = (
+        find("per pixel"),
+        find("per pixel, lights culled per object"),
+    );
+    assert!(b.2 < 0.95 * a.2, "per pixel: {} against {}", b.2, a.2);
+    // The sphere light's Hermite approximation: its own row, a different frame cost.
+    let h = find("Gouraud (as written), Hermite caps and spheres");
+    assert_ne!(h.2, find("Gouraud (as written)").2);
+    // The demo scene: nothing to cull (every light reaches both objects), so no such row.
+    let demo_rows = budget_rows(&demo(), "stm32f411", &dir);
+    assert!(
+        demo_rows.iter().all(|r| !r.1.contains("culled")),
+        "{demo_rows:?}"
+    );
+    assert!(demo_rows.iter().any(|r| r.1.contains("Hermite")));
+}

@@ -443,6 +443,8 @@ const KIND_MODELS: &[(&str, &str, &str)] = &[
     ("polygon", "polygon_lambert", "phong_polygon"),
     ("sphere", "sphere_lambert", "phong_sphere"),
     ("cap", "cap_lambert", "phong_cap"),
+    ("sphere_hermite", "sphere_lambert_hermite", "phong_sphere"),
+    ("cap_hermite", "cap_lambert_hermite", "phong_cap"),
     ("point", "point_lambert", "point_phong"),
     ("hemisphere", "hemi_const", "phong_hemi_const"),
     ("overcast", "sky_overcast", "phong_hemi_cos"),
@@ -550,6 +552,38 @@ pub fn calibrate(
                             (backend.into(), format!("phong32:{kind}")),
                             (0.0, "derived"),
                         );
+                    }
+                }
+            }
+        }
+        // The Hermite variants of the cap and the sphere: the exact kind's calibrated cost
+        // times the QEMU budget's ratio of the two diffuse models, and the exact kind's
+        // calibrated Phong items (the same function).
+        for (base, exact, hermite) in [
+            ("sphere", "sphere_lambert", "sphere_lambert_hermite"),
+            ("cap", "cap_lambert", "cap_lambert_hermite"),
+        ] {
+            let kind = format!("{base}_hermite");
+            if let (Some(c), Some(qh), Some(qe)) = (
+                cal.get(&format!("diffuse:{base}")),
+                count(backend, hermite),
+                count(backend, exact),
+            ) {
+                rows.insert(
+                    (backend.into(), format!("diffuse:{kind}")),
+                    (c * qh / qe, "derived"),
+                );
+            }
+            for (item, c) in &cal {
+                if let Some((what, rest)) = item.split_once(':') {
+                    let (k, sub) = rest.split_once(':').map_or((rest, ""), |(k, s)| (k, s));
+                    if k == base && what.starts_with("phong") {
+                        let name = if sub.is_empty() {
+                            format!("{what}:{kind}")
+                        } else {
+                            format!("{what}:{kind}:{sub}")
+                        };
+                        rows.insert((backend.into(), name), (*c, "calibrate"));
                     }
                 }
             }

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use arealight::raster::Shading;
-use arealight::{Fast32, Fixed22, Real};
+use arealight::{Fast32, Fixed22, ObjectBounds, Real, Rgb, Scene, Vec3};
 use tiny_skia::{Paint, PathBuilder, Pixmap, Stroke, Transform};
 
 use crate::budget::BudgetArgs;
@@ -41,6 +41,8 @@ pub struct Row {
     pub shading: String,
     /// The meshes' segment counts times this (1: as written).
     pub tessellation: f64,
+    /// The models and the light set: as written, Hermite, or culled per object.
+    pub variant: Variant,
     /// The predicted frame, in the chip's unit.
     pub predicted: Prediction,
     /// Milliseconds at the chip's clock.
@@ -78,13 +80,46 @@ pub struct Budget {
     pub skipped: Vec<Skipped>,
 }
 
-/// An option's shading: its label, the shading per object, the tessellation factor.
-type Plan = (String, Vec<Shading>, f64);
+/// What an option changes besides shading and tessellation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Variant {
+    /// The file's lights and models.
+    AsWritten,
+    /// Every cap and sphere light's diffuse term by Snyder's Hermite approximation
+    /// (`lambert_hermite`) instead of the exact one.
+    Hermite,
+    /// Each object shaded by the lights `Scene::prepare` keeps for it (the lights that cannot
+    /// reach its bounding sphere and normal cone skipped: the same frame, fewer calls).
+    Culled,
+}
+
+impl Variant {
+    /// Words appended to an option's shading.
+    fn words(self) -> &'static str {
+        match self {
+            Variant::AsWritten => "",
+            Variant::Hermite => ", Hermite caps and spheres",
+            Variant::Culled => ", lights culled per object",
+        }
+    }
+}
+
+/// An option's shading: its label, the shading per object, the tessellation factor, the
+/// variant.
+type Plan = (String, Vec<Shading>, f64, Variant);
 
 /// The options tried per backend: as written, all Gouraud, all per pixel, each lit object
-/// alone per pixel, and the first two with the meshes' segments halved and doubled.
-/// (Emissive objects are always Gouraud.) Deduplicated.
-fn assignments(written: &[Shading], lit: &[bool], names: &[String]) -> Vec<Plan> {
+/// alone per pixel, and the first two with the meshes' segments halved and doubled; with
+/// `hermite` (the scene has cap or sphere lights) the first two with Hermite diffuse terms;
+/// with `culled` (culling drops a light for some object) the first three with the lights
+/// culled. (Emissive objects are always Gouraud.) Deduplicated.
+fn assignments(
+    written: &[Shading],
+    lit: &[bool],
+    names: &[String],
+    hermite: bool,
+    culled: bool,
+) -> Vec<Plan> {
     let all = |s: Shading| -> Vec<Shading> {
         lit.iter()
             .map(|&l| if l { s } else { Shading::Gouraud })
@@ -102,14 +137,42 @@ fn assignments(written: &[Shading], lit: &[bool], names: &[String]) -> Vec<Plan>
             out.push((format!("{} per pixel", names[i]), a));
         }
     }
-    let mut plans: Vec<Plan> = out.into_iter().map(|(l, a)| (l, a, 1.0)).collect();
+    let mut plans: Vec<Plan> = out
+        .into_iter()
+        .map(|(l, a)| (l, a, 1.0, Variant::AsWritten))
+        .collect();
     for tess in [0.5, 2.0] {
-        plans.push(("as written".to_owned(), written.to_vec(), tess));
-        plans.push(("all Gouraud".to_owned(), all(Shading::Gouraud), tess));
+        plans.push((
+            "as written".to_owned(),
+            written.to_vec(),
+            tess,
+            Variant::AsWritten,
+        ));
+        plans.push((
+            "all Gouraud".to_owned(),
+            all(Shading::Gouraud),
+            tess,
+            Variant::AsWritten,
+        ));
     }
-    let mut seen: Vec<(Vec<Shading>, u64)> = Vec::new();
-    plans.retain(|(_, a, t)| {
-        let key = (a.clone(), t.to_bits());
+    let firsts = [
+        ("as written".to_owned(), written.to_vec()),
+        ("all Gouraud".to_owned(), all(Shading::Gouraud)),
+        ("all per pixel".to_owned(), all(Shading::PerPixel)),
+    ];
+    if hermite {
+        for (l, a) in firsts.iter().take(2) {
+            plans.push((l.clone(), a.clone(), 1.0, Variant::Hermite));
+        }
+    }
+    if culled {
+        for (l, a) in &firsts {
+            plans.push((l.clone(), a.clone(), 1.0, Variant::Culled));
+        }
+    }
+    let mut seen: Vec<(Vec<Shading>, u64, Variant)> = Vec::new();
+    plans.retain(|(_, a, t, v)| {
+        let key = (a.clone(), t.to_bits(), *v);
         if seen.contains(&key) {
             false
         } else {
@@ -147,27 +210,47 @@ fn rows_in<T: Real + 'static>(
     reference: &[[u8; 3]],
     plan: &[Plan],
     finishes: &[Finish],
-    lights: &[LightCost],
     lit: &[bool],
     names: &[String],
+    culled: &[Vec<bool>],
 ) -> Result<Vec<Row>, String> {
-    let mut scenes: Vec<(u64, Parsed<T>)> = Vec::new();
+    let mut scenes: Vec<((u64, bool), Parsed<T>)> = Vec::new();
     let mut rows = Vec::new();
-    for (label, a, tess) in plan {
-        if !scenes.iter().any(|(t, _)| *t == tess.to_bits()) {
-            let parsed = scene_file::parse_tessellated::<T>(name, src, *tess)
+    for (label, a, tess, variant) in plan {
+        let key = (tess.to_bits(), *variant == Variant::Hermite);
+        if !scenes.iter().any(|(k, _)| *k == key) {
+            let parsed = scene_file::parse_variant::<T>(name, src, *tess, key.1)
                 .map_err(|e| format!("the scene does not build in {backend}: {e}"))?;
-            scenes.push((tess.to_bits(), parsed));
+            scenes.push((key, parsed));
         }
-        let Some((_, Parsed { scene, .. })) = scenes.iter().find(|(t, _)| *t == tess.to_bits())
-        else {
+        let Some((_, parsed)) = scenes.iter().find(|(k, _)| *k == key) else {
             continue;
         };
-        let (frame, work) = work::render(scene, a, chip.band_rows)
+        let (frame, mut work) = work::render(&parsed.scene, a, chip.band_rows)
             .map_err(|e| format!("{backend}: the rasterizer refused the scene: {e}"))?;
+        if *variant == Variant::Culled {
+            // The culled lights are not called: their calls cost nothing.
+            for (o, drop) in work.objects.iter_mut().zip(culled) {
+                for calls in [&mut o.vertex_lights, &mut o.pixel_lights] {
+                    for (c, &d) in calls.iter_mut().zip(drop) {
+                        if d {
+                            *c = work::LightCalls::default();
+                        }
+                    }
+                }
+            }
+        }
+        let lights: Vec<LightCost> = parsed
+            .lights
+            .iter()
+            .map(|l| LightCost {
+                kind: l.kind.to_owned(),
+                vertices: l.vertices,
+            })
+            .collect();
         let (max_err, mean_err) = work::image_error(&frame, reference);
         costs.take_derived();
-        let predicted = costs::predict(chip, costs, backend, &work, finishes, lights)?;
+        let predicted = costs::predict(chip, costs, backend, &work, finishes, &lights)?;
         let derived = costs.take_derived();
         let mut shading = if label == "as written" {
             format!("{} (as written)", describe(a, lit, names))
@@ -177,10 +260,12 @@ fn rows_in<T: Real + 'static>(
         if *tess != 1.0 {
             let _ = write!(shading, ", mesh segments x{tess}");
         }
+        shading.push_str(variant.words());
         rows.push(Row {
             backend,
             shading,
             tessellation: *tess,
+            variant: *variant,
             ms: predicted.total() / (chip.mhz * 1e3),
             predicted,
             max_err,
@@ -203,14 +288,6 @@ pub fn budget(path: &Path, chip: &str) -> Result<Budget, String> {
     let name = path.display().to_string();
     let src = std::fs::read_to_string(path).map_err(|e| format!("cannot read {name}: {e}"))?;
     let reference: Parsed<f64> = scene_file::parse_as::<f64>(&name, &src)?;
-    let lights: Vec<LightCost> = reference
-        .lights
-        .iter()
-        .map(|l| LightCost {
-            kind: l.kind.to_owned(),
-            vertices: l.vertices,
-        })
-        .collect();
     let finishes: Vec<Finish> = reference
         .scene
         .objects
@@ -235,7 +312,18 @@ pub fn budget(path: &Path, chip: &str) -> Result<Budget, String> {
         .map(|o| format!("{} (line {})", o.kind, o.line))
         .collect();
     let written: Vec<Shading> = reference.scene.objects.iter().map(|o| o.shading).collect();
-    let plan = assignments(&written, &lit, &names);
+    let hermite = reference
+        .lights
+        .iter()
+        .any(|l| l.kind == "cap" || l.kind == "sphere");
+    let culled = culling(&reference, &finishes)?;
+    let plan = assignments(
+        &written,
+        &lit,
+        &names,
+        hermite,
+        culled.iter().flatten().any(|&d| d),
+    );
     let all_per_pixel: Vec<Shading> = vec![Shading::PerPixel; lit.len()];
     let (reference_frame, _) = work::render(&reference.scene, &all_per_pixel, chip.band_rows)
         .map_err(|e| format!("f64: the rasterizer refused the scene: {e}"))?;
@@ -252,9 +340,9 @@ pub fn budget(path: &Path, chip: &str) -> Result<Budget, String> {
             reference_frame.as_slice(),
             plan.as_slice(),
             finishes.as_slice(),
-            lights.as_slice(),
             lit.as_slice(),
             names.as_slice(),
+            culled.as_slice(),
         );
         let got = match backend {
             "fixed" => call::<Fixed22>(args),
@@ -284,10 +372,94 @@ type RowsArgs<'a> = (
     &'a [[u8; 3]],
     &'a [Plan],
     &'a [Finish],
-    &'a [LightCost],
     &'a [bool],
     &'a [String],
+    &'a [Vec<bool>],
 );
+
+/// Per object, per light: whether `Scene::prepare` drops the light for the object (the
+/// lights a `Scene` cannot hold, and emissive objects, are never culled). The object's bounds:
+/// the bounding sphere of its transformed vertices, and (one-sided objects) the cone of its
+/// transformed normals, both widened by a relative 1e-9.
+///
+/// # Errors
+/// A bound the library refuses (not finite).
+fn culling(reference: &Parsed<f64>, finishes: &[Finish]) -> Result<Vec<Vec<bool>>, String> {
+    let lights = &reference.scene_lights;
+    let mut none = vec![vec![false; lights.len()]; finishes.len()];
+    // The scene of the lights a `Scene` holds, and their indices in the file.
+    let mut scene = Box::new(Scene::<f64, 32, { scene_file::MAX_POLYGON }>::new());
+    let mut index = Vec::new();
+    for (i, (l, info)) in lights.iter().zip(&reference.lights).enumerate() {
+        if let Some(l) = l {
+            if scene.push(l.clone(), Rgb::from_f64(info.colour)).is_err() {
+                return Ok(none);
+            }
+            index.push(i);
+        }
+    }
+    for ((o, f), drop) in reference.scene.objects.iter().zip(finishes).zip(&mut none) {
+        let Finish::Lit { specular, .. } = *f else {
+            continue;
+        };
+        let pts: Vec<[f64; 3]> = o
+            .mesh
+            .verts
+            .iter()
+            .map(|v| o.xf.point(v.position).to_f64())
+            .collect();
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in &pts {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+        let r = pts
+            .iter()
+            .map(|p| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt())
+            .fold(0.0, f64::max);
+        let mut bounds = ObjectBounds::sphere(Vec3::from_f64(c), r * (1.0 + 1e-9) + 1e-12)
+            .map_err(|e| format!("culling bounds: {e}"))?;
+        if !o.two_sided {
+            let ns: Vec<[f64; 3]> = o
+                .mesh
+                .verts
+                .iter()
+                .filter_map(|v| {
+                    let n = o.xf.normal(v.normal).to_f64();
+                    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                    (l > 0.0).then(|| n.map(|x| x / l))
+                })
+                .collect();
+            let sum = ns
+                .iter()
+                .fold([0.0; 3], |a, n| [a[0] + n[0], a[1] + n[1], a[2] + n[2]]);
+            let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
+            if len > 1e-6 * ns.len() as f64 {
+                let axis = sum.map(|x| x / len);
+                let half = ns
+                    .iter()
+                    .map(|n| {
+                        (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2])
+                            .clamp(-1.0, 1.0)
+                            .acos()
+                    })
+                    .fold(0.0, f64::max);
+                let half = (half * (1.0 + 1e-9) + 1e-12).min(core::f64::consts::PI);
+                bounds = bounds
+                    .with_normal_cone(Vec3::from_f64(axis), half)
+                    .map_err(|e| format!("culling bounds: {e}"))?;
+            }
+        }
+        let kept = scene.prepare(&bounds, specular);
+        for (k, &i) in index.iter().enumerate() {
+            drop[i] = !kept.active_indices().contains(&(k as u16));
+        }
+    }
+    Ok(none)
+}
 
 fn call<T: Real + 'static>(a: RowsArgs<'_>) -> Result<Vec<Row>, String> {
     rows_in::<T>(a.0, a.1, a.2, a.3, a.4, a.5, a.6, a.7, a.8, a.9, a.10)
@@ -731,7 +903,7 @@ pub fn check(b: &Budget, path: &Path) -> Result<(String, bool), String> {
     for m in measured(path, b.chip, &stem(Path::new(&b.scene)))? {
         let (label, plan, units) = (m.label, m.plan, m.units);
         let row = b.rows.iter().filter(|r| r.backend == backend).find(|r| {
-            if r.tessellation != 1.0 {
+            if r.tessellation != 1.0 || r.variant != Variant::AsWritten {
                 false
             } else if plan == "as written" {
                 r.shading.ends_with("(as written)")
@@ -1117,6 +1289,7 @@ mod tests {
             backend: "f32",
             shading: format!("{ms} {e}"),
             tessellation: 1.0,
+            variant: Variant::AsWritten,
             predicted: Prediction::default(),
             ms,
             max_err: e,

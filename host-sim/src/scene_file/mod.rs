@@ -16,8 +16,8 @@ use std::path::{Path, PathBuf};
 use arealight::raster::{Affine, Camera, Encoding, Material, Projection, RasterError, Shading};
 use arealight::{
     Ambient, CapLight, DirectionalLight, Environment, HemisphereLight, Illuminant, LineLight,
-    OvercastSky, ParallelogramLight, PointLight, PolygonLight, Real, Rgb, Sh9, SkyGround,
-    SphereLight, Tinted, Vec3,
+    OvercastSky, ParallelogramLight, PhongLobe, PointLight, PolygonLight, Real, Rgb, SceneLight,
+    Sh9, SkyGround, SphereLight, Tinted, Vec3,
 };
 use serde::Deserialize;
 use toml::Spanned;
@@ -33,7 +33,7 @@ const MAX_EXPONENT: i64 = arealight::phong::MAX_EXPONENT as i64;
 /// Above this exponent a scene renders, with a warning: every specular sample costs O(m).
 const SLOW_EXPONENT: i64 = 1000;
 /// The vertex capacity of a polygon light in a scene file.
-const MAX_POLYGON: usize = 16;
+pub const MAX_POLYGON: usize = 16;
 /// The most vertices a mesh may have (16-bit indices).
 const MAX_MESH_VERTICES: i64 = 1 << 16;
 
@@ -416,10 +416,43 @@ fn light_error(l: &LightDef, pos: usize, e: arealight::Error) -> Located {
     }
 }
 
+/// A cap or sphere light whose diffuse term is Snyder's two-segment Hermite approximation
+/// (`lambert_hermite`) instead of the exact one (`host-sim budget`'s "Hermite" option); its
+/// Phong term is the exact one's.
+struct Hermite<L>(L);
+
+impl<T: Real> Illuminant<T> for Hermite<CapLight<T>> {
+    fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        Rgb::splat(self.0.lambert_hermite(n))
+    }
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        Illuminant::phong(&self.0, lobe, p, r)
+    }
+}
+
+impl<T: Real> Illuminant<T> for Hermite<SphereLight<T>> {
+    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        Rgb::splat(self.0.lambert_hermite(p, n))
+    }
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        Illuminant::phong(&self.0, lobe, p, r)
+    }
+}
+
+/// A light of the file: the boxed light the host renders with, what the budget needs of it,
+/// and the same light as a [`SceneLight`] (the boards' light type: `Scene::prepare`'s culling),
+/// for the kinds a `Scene` holds.
+type BuiltLight<T> = (
+    Box<dyn Illuminant<T>>,
+    LightInfo,
+    Option<SceneLight<T, MAX_POLYGON>>,
+);
+
 fn build_light<T: Real + 'static>(
     l: &LightDef,
     pos: usize,
-) -> Result<(Box<dyn Illuminant<T>>, LightInfo), Located> {
+    hermite: bool,
+) -> Result<BuiltLight<T>, Located> {
     let k = l.kind.get_ref().as_str();
     let Some((_, keys)) = LIGHT_KINDS.iter().find(|(n, _)| *n == k) else {
         let names: Vec<&str> = LIGHT_KINDS.iter().map(|(n, _)| *n).collect();
@@ -444,31 +477,47 @@ fn build_light<T: Real + 'static>(
     };
     let e = |e: arealight::Error| light_error(l, pos, e);
     let mut vertices = 0;
-    let light: Box<dyn Illuminant<T>> = match k {
-        "directional" => {
-            Box::new(DirectionalLight::new(vec(&l.direction, "direction")?).map_err(e)?)
-        }
+    // Boxed, with its `SceneLight` twin where a `Scene` holds the kind.
+    fn both<T: Real + 'static, L: Illuminant<T> + Clone + 'static>(
+        l: L,
+        scene: impl FnOnce(L) -> SceneLight<T, MAX_POLYGON>,
+    ) -> (Box<dyn Illuminant<T>>, Option<SceneLight<T, MAX_POLYGON>>) {
+        (Box::new(l.clone()), Some(scene(l)))
+    }
+    let (light, scene_light): (Box<dyn Illuminant<T>>, _) = match k {
+        "directional" => both(
+            DirectionalLight::new(vec(&l.direction, "direction")?).map_err(e)?,
+            SceneLight::Directional,
+        ),
         "point" => {
             let p = vec(&l.position, "position")?;
             let inverse_square = l.inverse_square.as_ref().is_some_and(|s| *s.get_ref());
-            Box::new(
+            both(
                 if inverse_square {
                     PointLight::inverse_square(p)
                 } else {
                     PointLight::new(p)
                 }
                 .map_err(e)?,
+                SceneLight::Point,
             )
         }
-        "hemisphere" => Box::new(HemisphereLight::new(vec(&l.axis, "axis")?).map_err(e)?),
-        "overcast" => Box::new(OvercastSky::new(vec(&l.axis, "axis")?, T::ONE).map_err(e)?),
-        "sky_ground" => Box::new(
+        "hemisphere" => both(
+            HemisphereLight::new(vec(&l.axis, "axis")?).map_err(e)?,
+            SceneLight::Hemisphere,
+        ),
+        "overcast" => both(
+            OvercastSky::new(vec(&l.axis, "axis")?, T::ONE).map_err(e)?,
+            SceneLight::Overcast,
+        ),
+        "sky_ground" => both(
             SkyGround::new(
                 vec(&l.axis, "axis")?,
                 rgb(&l.sky, "sky")?,
                 rgb(&l.ground, "ground")?,
             )
             .map_err(e)?,
+            SceneLight::SkyGround,
         ),
         "cap" => {
             let axis = vec(&l.axis, "axis")?;
@@ -479,19 +528,27 @@ fn build_light<T: Real + 'static>(
                 |x| (0.0..=90.0).contains(&x),
                 "0 to 90 degrees",
             )?;
-            Box::new(
-                CapLight::new(
-                    axis,
-                    T::from_f64(sigma.to_radians().min(core::f64::consts::FRAC_PI_2)),
-                )
-                .map_err(e)?,
+            let cap = CapLight::new(
+                axis,
+                T::from_f64(sigma.to_radians().min(core::f64::consts::FRAC_PI_2)),
             )
+            .map_err(e)?;
+            if hermite {
+                (Box::new(Hermite(cap)), Some(SceneLight::Cap(cap)))
+            } else {
+                both(cap, SceneLight::Cap)
+            }
         }
         "sphere" => {
             let center = vec(&l.center, "center")?;
             let r = need(&l.radius, &what, "radius", pos)?;
             let r = in_range("radius", r, |x| x > 0.0, "> 0")?;
-            Box::new(SphereLight::new(center, T::from_f64(r)).map_err(e)?)
+            let sphere = SphereLight::new(center, T::from_f64(r)).map_err(e)?;
+            if hermite {
+                (Box::new(Hermite(sphere)), Some(SceneLight::Sphere(sphere)))
+            } else {
+                both(sphere, SceneLight::Sphere)
+            }
         }
         "polygon" => {
             let vs = need(&l.vertices, &what, "vertices", pos)?;
@@ -512,16 +569,25 @@ fn build_light<T: Real + 'static>(
             }
             let vs: Vec<Vec3<T>> = vs.get_ref().iter().map(|&p| v3(p)).collect();
             vertices = vs.len();
-            Box::new(PolygonLight::<T, MAX_POLYGON>::new(&vs).map_err(e)?)
-        }
-        "line" => Box::new(LineLight::new(vec(&l.a, "a")?, vec(&l.b, "b")?).map_err(e)?),
-        "parallelogram" => Box::new(
-            ParallelogramLight::new(
-                vec(&l.origin, "origin")?,
-                vec(&l.eu, "eu")?,
-                vec(&l.ev, "ev")?,
+            both(
+                PolygonLight::<T, MAX_POLYGON>::new(&vs).map_err(e)?,
+                SceneLight::Polygon,
             )
-            .map_err(e)?,
+        }
+        "line" => (
+            Box::new(LineLight::new(vec(&l.a, "a")?, vec(&l.b, "b")?).map_err(e)?),
+            None,
+        ),
+        "parallelogram" => (
+            Box::new(
+                ParallelogramLight::new(
+                    vec(&l.origin, "origin")?,
+                    vec(&l.eu, "eu")?,
+                    vec(&l.ev, "ev")?,
+                )
+                .map_err(e)?,
+            ),
+            None,
         ),
         "sh9" => {
             let env = match &l.environment {
@@ -544,25 +610,32 @@ fn build_light<T: Real + 'static>(
                     }
                 }
             };
-            Box::new(Sh9::<T>::environment(env).prepare())
+            both(Sh9::<T>::environment(env).prepare(), SceneLight::Sh9)
         }
-        _ => Box::new(Ambient(Rgb::splat(T::ONE))),
+        _ => both(Ambient(Rgb::splat(T::ONE)), SceneLight::Ambient),
     };
     let colour = match &l.colour {
         Some(c) => finite("colour", c)?,
         None => DEFAULT_COLOUR,
     };
-    let info = LightInfo {
-        kind: LIGHT_KINDS
+    let kind = match (k, hermite) {
+        ("cap", true) => "cap_hermite",
+        ("sphere", true) => "sphere_hermite",
+        _ => LIGHT_KINDS
             .iter()
             .find(|(n, _)| *n == k)
             .map_or("ambient", |(n, _)| *n),
+    };
+    let info = LightInfo {
+        kind,
         vertices,
         line: 0,
+        colour,
     };
     Ok((
         Box::new(Tinted::new(Lights(vec![light]), Rgb::from_f64(colour)).map_err(e)?),
         info,
+        scene_light,
     ))
 }
 
@@ -834,23 +907,31 @@ fn build_camera<T: Real>(cam: &CameraDef, pos: usize) -> Result<Camera<T>, Locat
 }
 
 /// A built scene with what the budget needs of its file.
-type Built<T> = (Scene<T>, Vec<LightInfo>, Vec<ObjectInfo>);
+type Built<T> = (
+    Scene<T>,
+    Vec<LightInfo>,
+    Vec<ObjectInfo>,
+    Vec<Option<SceneLight<T, MAX_POLYGON>>>,
+);
 
 fn build<T: Real + 'static>(
     file: &File,
     src: &str,
     tess: f64,
+    hermite: bool,
     warnings: &mut Vec<Located>,
 ) -> Result<Built<T>, Located> {
     let cam = file.camera.get_ref();
     let camera = build_camera(cam, file.camera.span().start)?;
     let mut lights = Vec::new();
     let mut light_info = Vec::new();
+    let mut scene_lights = Vec::new();
     for l in &file.light {
-        let (light, mut info) = build_light(l.get_ref(), l.span().start)?;
+        let (light, mut info, scene_light) = build_light(l.get_ref(), l.span().start, hermite)?;
         info.line = line_col(src, l.span().start).0;
         lights.push(light);
         light_info.push(info);
+        scene_lights.push(scene_light);
     }
     let lights = Lights(lights);
     let mut materials: Vec<(String, Finish<T>)> = Vec::new();
@@ -1017,6 +1098,7 @@ fn build<T: Real + 'static>(
         },
         light_info,
         object_info,
+        scene_lights,
     ))
 }
 
@@ -1027,7 +1109,7 @@ enum Finish<T> {
 }
 
 /// What a scene file's light is, for budgets (`host-sim budget --scene`).
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct LightInfo {
     /// Its `kind` (`"polygon"`, `"sphere"`, ...).
     pub kind: &'static str,
@@ -1035,6 +1117,8 @@ pub struct LightInfo {
     pub vertices: usize,
     /// The line of its `[[light]]` header.
     pub line: usize,
+    /// Its colour (the file's, or white).
+    pub colour: [f64; 3],
 }
 
 /// What a scene file's mesh is, for budgets (`host-sim budget --scene`).
@@ -1079,6 +1163,9 @@ pub struct Parsed<T = f32> {
     pub lights: Vec<LightInfo>,
     /// The meshes, in file order (the scene's objects are in the same order).
     pub objects: Vec<ObjectInfo>,
+    /// Each light as a [`SceneLight`] (`None` for the kinds a `Scene` does not hold: line,
+    /// parallelogram), in file order: what `host-sim budget`'s light culling tests.
+    pub scene_lights: Vec<Option<SceneLight<T, MAX_POLYGON>>>,
 }
 
 /// Parses and builds the scene in `src` (named `name` in messages).
@@ -1111,6 +1198,21 @@ pub fn parse_tessellated<T: Real + 'static>(
     src: &str,
     tess: f64,
 ) -> Result<Parsed<T>, String> {
+    parse_variant(name, src, tess, false)
+}
+
+/// [`parse_tessellated`], and with `hermite` every cap and sphere light's diffuse term
+/// replaced by Snyder's Hermite approximation (`lambert_hermite`; their kinds become
+/// `cap_hermite` and `sphere_hermite`): `host-sim budget --scene`'s "Hermite" option.
+///
+/// # Errors
+/// As [`parse_as`].
+pub fn parse_variant<T: Real + 'static>(
+    name: &str,
+    src: &str,
+    tess: f64,
+    hermite: bool,
+) -> Result<Parsed<T>, String> {
     let located = |l: Located| {
         let (line, col) = line_col(src, resolve(src, &l));
         format!("{name}:{line}:{col}: {}", l.msg)
@@ -1124,7 +1226,8 @@ pub fn parse_tessellated<T: Real + 'static>(
         })
     })?;
     let mut warnings = Vec::new();
-    let (scene, lights, objects) = build(&file, src, tess, &mut warnings).map_err(located)?;
+    let (scene, lights, objects, scene_lights) =
+        build(&file, src, tess, hermite, &mut warnings).map_err(located)?;
     let warnings = warnings
         .into_iter()
         .map(|w| {
@@ -1137,6 +1240,7 @@ pub fn parse_tessellated<T: Real + 'static>(
         warnings,
         lights,
         objects,
+        scene_lights,
     })
 }
 
