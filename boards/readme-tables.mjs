@@ -15,6 +15,9 @@
 //   budget           target/budget/budget-table.md    cargo run --release -p host-sim -- budget --out target/budget
 //                                                     (after cargo test -p host-sim --test qemu_budget)
 //   sizes            boards/size-probe/sizes.md       boards/size-probe/measure.sh boards/size-probe/sizes.md
+//   scene-budget     target/scene-budget/demo-rp2040-answer.md
+//   scene-checks     target/scene-budget/checks.md    .ci/run's scene budget step (host-sim budget
+//                                                     --scene ... --check, after the emulators)
 //   accuracy-*, acc-*, scene-cost, large-exponents
 //                    target/accuracy/*.md             node boards/test-tables.mjs LOG, from the log of
 //                                                     cargo test --workspace -- --nocapture (the

@@ -1012,8 +1012,20 @@ fn run(args: &BudgetArgs, scene: &Path) -> Result<(Vec<PathBuf>, bool), String> 
     let mut md = markdown(&b, args.fps, args.max_error);
     let mut short = answer(&b, args.fps, args.max_error);
     let mut ok = true;
+    let mut check_table = None;
     if let Some(frames) = &args.check {
         let (table, fine) = check(&b, frames)?;
+        // The same rows with the scene and the chip first (CI joins these tables into one).
+        let with_scene: Vec<String> = table
+            .lines()
+            .enumerate()
+            .map(|(i, l)| match i {
+                0 => format!("| scene | chip {l}"),
+                1 => format!("|---|---{l}"),
+                _ => format!("| {} | {} {l}", stem(scene), b.chip.name),
+            })
+            .collect();
+        check_table = Some(with_scene.join("\n") + "\n");
         let checked = format!(
             "\nAgainst the emulated frames of `{}`:\n\n{table}",
             frames.display()
@@ -1034,7 +1046,13 @@ fn run(args: &BudgetArgs, scene: &Path) -> Result<(Vec<PathBuf>, bool), String> 
     // The answer and the check alone (for the README's worked example).
     let answer_path = args.out.join(format!("{base}-answer.md"));
     std::fs::write(&answer_path, &short).map_err(|e| format!("{}: {e}", answer_path.display()))?;
-    Ok((vec![md_path, csv_path, png, answer_path], ok))
+    let mut written = vec![md_path, csv_path, png, answer_path];
+    if let Some(t) = check_table {
+        let path = args.out.join(format!("{base}-check.md"));
+        std::fs::write(&path, t).map_err(|e| format!("{}: {e}", path.display()))?;
+        written.push(path);
+    }
+    Ok((written, ok))
 }
 
 /// `host-sim budget --calibrate`: writes host-sim/costs.csv from the emulators' measurements.
