@@ -6,7 +6,11 @@
 //! are unit and outward. Nothing is written when a buffer is too small (the error says which
 //! and how much is needed), so they never panic.
 //!
-//! Accuracy: positions and normals to the backend's `sin`/`cos`. Cost: one `sin` and one `cos`
+//! Accuracy: positions and normals to the backend's `sin`/`cos`, of angles `2 pi k / n` (and
+//! plane fractions `k / n`) rounded by the type's product and division, for every segment
+//! count (in [`Fixed22`](crate::Fixed22) too, whose range ends at 512: the integers are scaled
+//! by a power of two first, see `scaled_pair`; `tests/raster_fixed.rs` measures the vertices
+//! against f64's at 600 segments). Cost: one `sin` and one `cos`
 //! per ring and per segment (the inner loops multiply), a few multiply-adds per vertex.
 
 use super::{RasterError, Vertex};
@@ -59,11 +63,33 @@ fn positive<T: Real>(x: T, name: &'static str) -> Result<T, RasterError> {
     Ok(x)
 }
 
-/// `(cos, sin)` of `2 pi k / n` (or `pi k / n` with `half`).
+/// `(k 2^-s, n 2^-s)` for `k <= n`, with the smallest `s >= 0` that brings `n 2^-s` below 64:
+/// exact in every backend (at most 10 fractional bits), and small enough that
+/// `2 pi k 2^-s` stays far inside [`Fixed22`](crate::Fixed22)'s range of +-512, where
+/// `from_u32(n)` itself would saturate from `n = 512` (and `2 pi k` from `k = 82`). The floats'
+/// products and quotients of these are those of `k` and `n` scaled by `2^-s` exactly: the same
+/// bits as computing with `k` and `n`; for `n < 64` every backend computes with `k` and `n`.
+#[inline]
+fn scaled_pair<T: Real>(k: usize, n: u16) -> (T, T) {
+    let bits = 16 - n.leading_zeros(); // n < 2^bits
+    let s = bits.saturating_sub(6);
+    let k = k.min(usize::from(n)) as i32;
+    (T::from_fixed_i32(k, s), T::from_fixed_i32(i32::from(n), s))
+}
+
+/// `k / n` (`k <= n`, `n > 0`), rounded once by the type's division (see [`scaled_pair`]).
+#[inline]
+fn fraction<T: Real>(k: usize, n: u16) -> T {
+    let (k, n) = scaled_pair::<T>(k, n);
+    k / n
+}
+
+/// `(cos, sin)` of `2 pi k / n` (or `pi k / n` with `half`), `k <= n`.
 #[inline]
 fn angle<T: Real>(k: usize, n: u16, half: bool) -> (T, T) {
     let full = if half { T::PI } else { T::TAU };
-    let a = full * T::from_u32(k as u32) / T::from_u32(n as u32);
+    let (k, n) = scaled_pair::<T>(k, n);
+    let a = full * k / n;
     (a.cos(), a.sin())
 }
 
@@ -174,9 +200,9 @@ pub fn plane<T: Real>(
     let up = Vec3::new(T::ZERO, T::ONE, T::ZERO);
     let row = nz as usize + 1;
     for i in 0..=nx as usize {
-        let x = size_x * (T::from_u32(i as u32) / T::from_u32(nx as u32) - T::HALF);
+        let x = size_x * (fraction::<T>(i, nx) - T::HALF);
         for j in 0..row {
-            let z = size_z * (T::from_u32(j as u32) / T::from_u32(nz as u32) - T::HALF);
+            let z = size_z * (fraction::<T>(j, nz) - T::HALF);
             verts[i * row + j] = Vertex::new(Vec3::new(x, T::ZERO, z), up);
         }
     }
