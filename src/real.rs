@@ -95,7 +95,11 @@ pub trait Real:
 
     /// Converts an `f64` (rounding to nearest). Used for literals; folds at compile time.
     fn from_f64(x: f64) -> Self;
-    /// Converts a small integer exactly (exact for |x| < 2^24 on every backend).
+    /// Converts an integer: exact for `x <= 2^24` in f32 and [`Fast32`] (rounded to nearest
+    /// beyond), for every `u32` in f64, and for `x < 512` in [`Fixed22`], which saturates from
+    /// 512 on (to `Fixed22::MAX`, `512 - 2^-22`: its range). Callers whose integer can reach
+    /// 512 (viewport sides, segment counts) scale it by a power of two first
+    /// ([`Real::from_fixed_i32`]) or scale into integers with [`Real::mul_u32_to_fixed_i32`].
     fn from_u32(x: u32) -> Self;
     /// Converts to `f64` (exact for every backend).
     fn to_f64(self) -> f64;
@@ -194,15 +198,25 @@ pub trait Real:
         let x = self.clamp(-Self::ONE, Self::ONE);
         ((Self::ONE - x) * (Self::ONE + x)).sqrt().atan2(x)
     }
-    /// `(v / d, d)` for `m = max(|x|, |y|, |z|) > 0`: the rescaling that lets lengths be
-    /// computed without overflow or underflow, with the scale `d` it divided by. The float
-    /// types take `d = m` (one reciprocal, three products); the fixed-point type a power of
-    /// two near `m` (exact shifts: `1/m` itself would saturate for `m < 1/512`, and a division
-    /// costs hundreds of instructions on Cortex-M0).
+    /// `(v / d, d)` with `d` from `m`, meant as `max(|x|, |y|, |z|)`: the rescaling that lets
+    /// lengths be computed without overflow or underflow, with the scale `d` it divided by.
+    /// Total: `d` comes from the largest of `m` and the components' magnitudes, so an `m`
+    /// below the largest component (or `m <= 0`) is harmless (the result is still exact to the
+    /// type's rounding, every component at most 1 in magnitude, 2 in fixed point), an `m`
+    /// above it divides by `m`. The float types take `d` = that largest value (three
+    /// absolute values and comparisons, one reciprocal, three products), `(v, 1)` when it is
+    /// 0 or infinite (a zero vector, an infinite component; a NaN component stays NaN, as it
+    /// came in); the fixed-point type a
+    /// power of two near it (exact shifts: `1/m` itself would saturate for `m < 1/512`, and a
+    /// division costs hundreds of instructions on Cortex-M0; see [`Fixed22`]'s `rescale3`).
     #[inline(always)]
     fn rescale3(v: [Self; 3], m: Self) -> ([Self; 3], Self) {
-        let r = Self::ONE / m;
-        ([v[0] * r, v[1] * r, v[2] * r], m)
+        let d = m.max(v[0].abs()).max(v[1].abs()).max(v[2].abs());
+        if !(d > Self::ZERO) || !d.is_finite() {
+            return (v, Self::ONE);
+        }
+        let r = Self::ONE / d;
+        ([v[0] * r, v[1] * r, v[2] * r], d)
     }
     /// `1/sqrt(self)` for `self > 0`; 0 otherwise (never infinite). The float types compute
     /// `1 / sqrt(x)`; the fixed-point type has its own Newton iteration (no division).
@@ -304,13 +318,16 @@ pub trait Real:
     /// `self / n` for a positive integer `n`: the same value as `self / Self::from_u32(n)` on
     /// every backend (the floats divide; [`Fixed22`] divides its raw bits by `n` through a
     /// reciprocal table, bit-identical to its `/` and a fraction of its cost). The Phong
-    /// recurrences' `1/i` steps.
+    /// recurrences' `1/i` steps. Like `from_u32`, [`Fixed22`] is exact for `n < 512` only:
+    /// from 512 on it divides by the saturated `512 - 2^-22`.
     #[inline(always)]
     fn div_u32(self, n: u32) -> Self {
         self / Self::from_u32(n)
     }
     /// `self * n` for an integer `n`: the same value as `self * Self::from_u32(n)` on every
-    /// backend ([`Fixed22`]: two small integer products instead of a full product).
+    /// backend ([`Fixed22`]: two small integer products instead of a full product; like
+    /// `from_u32`, for `n < 512` only: from 512 on it multiplies by `512 - 2^-22`; the product
+    /// saturates at +-512 in any case).
     #[inline(always)]
     fn mul_u32(self, n: u32) -> Self {
         self * Self::from_u32(n)

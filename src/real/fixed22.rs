@@ -347,22 +347,46 @@ impl Real for Fixed22 {
             Fixed22::from_bits(rsqrt_out(j, y)),
         )
     }
-    /// Scales by a power of two (exact shifts, no division): the largest component lands in
-    /// [1/2, 1) (in [1, 2) for `m >= 128`), and the scale returned is that power of two.
+    /// Scales by a power of two (exact shifts, no division) chosen from the largest of `m`
+    /// and the components' magnitudes, whatever `m` is (total: a component larger than `m`,
+    /// or `m <= 0`, no longer shifts bits out of the top): the largest component lands in
+    /// [1/2, 1) (in [1, 2] for a largest value of 256 or more: the shift right stops at 8),
+    /// unless `m` exceeds it (then `m` lands there), and the scale returned is that power of
+    /// two. All zero (and `m <= 0`): `(v, 1)`. Cost: three absolute values and ORs more than the shift from `m` alone,
+    /// which the normalizations (`normalize3`, `unit3`, their `m` the largest component by
+    /// construction) keep.
     #[inline]
     fn rescale3(v: [Self; 3], m: Self) -> ([Self; 3], Self) {
-        let bits = m.to_bits();
-        if bits <= 0 {
-            return (v, Self::ONE);
+        let top = (m.to_bits().max(0) as u32)
+            | v[0].to_bits().unsigned_abs()
+            | v[1].to_bits().unsigned_abs()
+            | v[2].to_bits().unsigned_abs();
+        rescale_by_top(v, top)
+    }
+    /// The default's body, with the rescaling by its `m` (the largest component by
+    /// construction: no test of the components needed).
+    #[inline(always)]
+    fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
+        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+        if m <= Self::TINY {
+            return None;
         }
-        let top = 31 - clz(bits as u32) as i32; // 0..=30
-        let k = (21 - top).clamp(-8, 21);
-        let scaled = if k >= 0 {
-            v.map(|x| Fixed22::from_bits(x.to_bits() << k))
-        } else {
-            v.map(|x| Fixed22::from_bits(x.to_bits() >> -k))
-        };
-        (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
+        let ([x, y, z], d) = rescale_by_top(v, m.to_bits() as u32);
+        let s2 = x * x + y * y + z * z;
+        let (len, inv) = s2.sqrt_rsqrt();
+        Some(([x * inv, y * inv, z * inv], len * d))
+    }
+    /// The default's body, with the rescaling by its `m` (see `normalize3`).
+    #[inline(always)]
+    fn unit3(v: [Self; 3]) -> Option<[Self; 3]> {
+        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+        if m <= Self::TINY {
+            return None;
+        }
+        let ([x, y, z], _) = rescale_by_top(v, m.to_bits() as u32);
+        let s2 = x * x + y * y + z * z;
+        let r = s2.rsqrt();
+        Some([x * r, y * r, z * r])
     }
     #[inline(always)]
     fn is_nan_like(self) -> bool {
@@ -398,4 +422,23 @@ impl Real for Fixed22 {
         };
         v.clamp(i32::MIN as i64, i32::MAX as i64) as i32
     }
+}
+
+/// `v` scaled by the power of two that brings `top`'s highest set bit (a bound on every
+/// component's magnitude in raw bits: no component's bits reach above it) to bit 21 (bit 22
+/// for bits 30 and 31, the shift right being limited to 8), and that power of two; `(v, 1)`
+/// for `top = 0`. With `top` such a bound no left shift overflows.
+#[inline(always)]
+fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
+    if top == 0 {
+        return (v, Fixed22::ONE);
+    }
+    let high = 31 - clz(top) as i32; // 0..=31
+    let k = (21 - high).clamp(-8, 21);
+    let scaled = if k >= 0 {
+        v.map(|x| Fixed22::from_bits(x.to_bits() << k))
+    } else {
+        v.map(|x| Fixed22::from_bits(x.to_bits() >> -k))
+    };
+    (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
 }
