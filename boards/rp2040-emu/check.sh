@@ -79,10 +79,10 @@ if [ $run_status -ne 0 ] || ! node "$here/report.mjs" costs "$out/calibrate.log"
   echo "calibrate: the emulator run failed (log: $out/calibrate.log)"
   status=1
 fi
-echo "== scene_file: the scene files of host-sim/scenes/ ($out/scenes.csv; --features scene-file, target dir boards/rp2040-st7789/target/emu-scenes)"
-(cd "$firmware" && env -u CARGO_TARGET_DIR cargo build --release --features emulator,scene-file --bin scene_file --target-dir target/emu-scenes)
+echo "== scene_file: the scene files of host-sim/scenes/ ($out/scenes.csv; --features scene-file, the same target dir)"
+(cd "$firmware" && env -u CARGO_TARGET_DIR cargo build --release --features emulator,scene-file --bin scene_file --target-dir target/emu)
 set +e
-node "$here/run.mjs" --elf "$firmware/target/emu-scenes/thumbv6m-none-eabi/release/scene_file" --until "scene files done" \
+node "$here/run.mjs" --elf "$elf_dir/scene_file" --until "scene files done" \
   >"$out/scene_file.log" 2>&1
 run_status=$?
 set -e

@@ -401,7 +401,9 @@ fn check(out_dir: &Path) -> Result<String, Vec<String>> {
 /// `scene:<name>`) for `host-sim budget --check`, which compares them with its predictions
 /// and requires the host's counts. The markdown table, or the failure.
 fn check_scenes(out_dir: &Path) -> Result<String, String> {
-    let elf = build(&out_dir.join("build-scenes"), &["scene-file"])?;
+    // The same target directory as the demo's build (its dependencies are reused; the ELF
+    // is overwritten after the demo's has run).
+    let elf = build(&out_dir.join("build"), &["scene-file"])?;
     let out = parse(&qemu(&elf)?)?;
     check_counter(&out.selfcheck)?;
     let keys: Vec<(String, u32)> = out.frames.keys().cloned().collect();

@@ -200,29 +200,57 @@ pub fn call_cost(
     let Finish::Lit { specular, m } = finish else {
         return Ok(0.0);
     };
-    let mut c = costs.need(
+    let mut c = own_cost(costs, backend, specular)?;
+    for l in lights {
+        let (d, p) = light_costs(costs, backend, l, (specular, m), None)?;
+        c += d + p;
+    }
+    Ok(c)
+}
+
+/// The material's own work per call.
+fn own_cost(costs: &Costs, backend: &str, specular: bool) -> Result<f64, String> {
+    costs.need(
         backend,
         if specular {
             "lit_specular"
         } else {
             "lit_matte"
         },
-    )?;
-    for l in lights {
-        let edges = if l.kind == "polygon" {
-            l.vertices.max(3) as f64 / 4.0
-        } else {
-            1.0
-        };
-        c += edges * costs.need(backend, &format!("diffuse:{}", l.kind))?;
-        if specular {
-            let p8 = costs.need(backend, &format!("phong8:{}", l.kind))?;
-            let p32 = costs.need(backend, &format!("phong32:{}", l.kind))?;
-            let at = p8 + (p32 - p8) * (f64::from(m) - 8.0) / 24.0;
-            c += edges * at.max(p8.min(p32) * 0.5);
+    )
+}
+
+/// One call of light `l`'s `diffuse` and (`specular`) of its `phong` at `m` (else 0): over all the calibration's
+/// points (`sub` `None`), or on its lit or dark points (`Some("lit")`, `Some("dark")`, each
+/// falling back to all points where the split was not measured). Phong is linear in m between
+/// the calibrated 8 and 32 (and never below half the cheaper); a polygon's costs scale with
+/// its edges (calibrated on a quad).
+fn light_costs(
+    costs: &Costs,
+    backend: &str,
+    l: &LightCost,
+    (specular, m): (bool, u32),
+    sub: Option<&str>,
+) -> Result<(f64, f64), String> {
+    let item = |what: &str| -> Result<f64, String> {
+        let all = format!("{what}:{}", l.kind);
+        match sub.and_then(|s| costs.get(backend, &format!("{all}:{s}"))) {
+            Some(x) => Ok(x),
+            None => costs.need(backend, &all),
         }
+    };
+    let edges = if l.kind == "polygon" {
+        l.vertices.max(3) as f64 / 4.0
+    } else {
+        1.0
+    };
+    let diffuse = edges * item("diffuse")?;
+    if !specular {
+        return Ok((diffuse, 0.0));
     }
-    Ok(c)
+    let (p8, p32) = (item("phong8")?, item("phong32")?);
+    let at = p8 + (p32 - p8) * (f64::from(m) - 8.0) / 24.0;
+    Ok((diffuse, edges * at.max(p8.min(p32) * 0.5)))
 }
 
 /// The cost of `calls` shader calls of an object under `lights`, of which `per_light[i]`
@@ -248,37 +276,11 @@ pub fn calls_cost(
     if per_light.len() != lights.len() || calls == 0 {
         return Ok(calls as f64 * call_cost(costs, backend, lights, finish)?);
     }
-    let own = costs.need(
-        backend,
-        if specular {
-            "lit_specular"
-        } else {
-            "lit_matte"
-        },
-    )?;
-    let mut c = calls as f64 * own;
-    // A light's cost of `what` on its lit (0) or dark (1) calls.
-    let split = |what: &str, kind: &str, dark: usize| -> Result<f64, String> {
-        let sub = ["lit", "dark"][dark];
-        match costs.get(backend, &format!("{what}:{kind}:{sub}")) {
-            Some(x) => Ok(x),
-            None => costs.need(backend, &format!("{what}:{kind}")),
-        }
-    };
+    let mut c = calls as f64 * own_cost(costs, backend, specular)?;
     for (l, n) in lights.iter().zip(per_light) {
-        let edges = if l.kind == "polygon" {
-            l.vertices.max(3) as f64 / 4.0
-        } else {
-            1.0
-        };
-        for s in 0..2 {
-            c += edges * n.diffuse[s] as f64 * split("diffuse", &l.kind, s)?;
-            if specular {
-                let p8 = split("phong8", &l.kind, s)?;
-                let p32 = split("phong32", &l.kind, s)?;
-                let at = p8 + (p32 - p8) * (f64::from(m) - 8.0) / 24.0;
-                c += edges * n.phong[s] as f64 * at.max(p8.min(p32) * 0.5);
-            }
+        for (s, sub) in ["lit", "dark"].into_iter().enumerate() {
+            let (d, p) = light_costs(costs, backend, l, (specular, m), Some(sub))?;
+            c += n.diffuse[s] as f64 * d + n.phong[s] as f64 * p;
         }
     }
     Ok(c)
