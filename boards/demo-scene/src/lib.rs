@@ -566,6 +566,100 @@ impl<E> From<RasterError> for FrameError<E> {
     }
 }
 
+/// The stages of a frame, as [`render_stages`] runs them: what a scene does per frame (the
+/// demo, and the scene-file player of [`spec`]).
+pub(crate) trait Stages {
+    /// What the setup computes for the frame (lights, transforms).
+    type Frame;
+    /// The frame's setup ([`Stage::Setup`]).
+    fn setup(&self, n: u32) -> Result<Self::Frame, RasterError>;
+    /// Every vertex transformed ([`Stage::Transform`]).
+    fn transform(&mut self, frame: &Self::Frame);
+    /// The Gouraud vertices shaded ([`Stage::Shade`]); the shader calls.
+    fn shade(&mut self, frame: &Self::Frame) -> u32;
+    /// One band drawn (cleared by the caller) ([`Stage::Raster`]).
+    fn draw_band(
+        &self,
+        frame: &Self::Frame,
+        band: &mut Band<'_, Rgb565>,
+        stats: &mut DrawStats,
+    ) -> Result<(), RasterError>;
+    /// The frame's height in pixels.
+    fn height(&self) -> u16;
+    /// The clear colour.
+    fn background(&self) -> Rgb565;
+}
+
+/// Renders frame `n` of `scene` through `band`, calling `flush` with each finished band, top to
+/// bottom, and `clock` between the stages, whose ticks it returns (the one frame loop of
+/// [`Demo::render_frame`] and `spec::Player::render_frame`).
+pub(crate) fn render_stages<S: Stages, E>(
+    scene: &mut S,
+    n: u32,
+    band: &mut Band<'_, Rgb565>,
+    clock: &mut impl FnMut() -> u32,
+    mut flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
+) -> Result<FrameReport, FrameError<E>> {
+    let mut report = FrameReport::default();
+    let mut last = clock();
+    let mut lap = |stage: Stage, ticks: &mut [u32; 5]| {
+        let now = clock();
+        let t = &mut ticks[stage as usize];
+        *t = t.wrapping_add(now.wrapping_sub(last));
+        last = now;
+    };
+    let frame = scene.setup(n)?;
+    lap(Stage::Setup, &mut report.ticks);
+    scene.transform(&frame);
+    lap(Stage::Transform, &mut report.ticks);
+    let mut stats = DrawStats {
+        shaded: scene.shade(&frame),
+        ..DrawStats::default()
+    };
+    lap(Stage::Shade, &mut report.ticks);
+    let rows = band.rows().max(1);
+    let (height, background) = (scene.height(), scene.background());
+    let mut y0: u16 = 0;
+    while y0 < height {
+        band.move_to(y0);
+        band.clear(background);
+        scene.draw_band(&frame, band, &mut stats)?;
+        lap(Stage::Raster, &mut report.ticks);
+        flush(band).map_err(FrameError::Flush)?;
+        lap(Stage::Flush, &mut report.ticks);
+        y0 = y0.saturating_add(rows);
+    }
+    report.stats = stats;
+    Ok(report)
+}
+
+impl<T: Real> Stages for Demo<'_, T> {
+    type Frame = Frame<T>;
+    fn setup(&self, n: u32) -> Result<Frame<T>, RasterError> {
+        self.frame(n)
+    }
+    fn transform(&mut self, frame: &Frame<T>) {
+        Demo::transform(self, frame);
+    }
+    fn shade(&mut self, frame: &Frame<T>) -> u32 {
+        Demo::shade(self, frame)
+    }
+    fn draw_band(
+        &self,
+        frame: &Frame<T>,
+        band: &mut Band<'_, Rgb565>,
+        stats: &mut DrawStats,
+    ) -> Result<(), RasterError> {
+        Demo::draw_band(self, frame, band, stats)
+    }
+    fn height(&self) -> u16 {
+        HEIGHT
+    }
+    fn background(&self) -> Rgb565 {
+        BACKGROUND
+    }
+}
+
 impl<'a, T: Real> Demo<'a, T> {
     /// Renders frame `n` through `band` (a [`WIDTH`]-wide band of any height), calling `flush`
     /// with each finished band, top to bottom, and `clock` (any free-running tick counter:
@@ -579,37 +673,8 @@ impl<'a, T: Real> Demo<'a, T> {
         n: u32,
         band: &mut Band<'_, Rgb565>,
         clock: &mut impl FnMut() -> u32,
-        mut flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
+        flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
     ) -> Result<FrameReport, FrameError<E>> {
-        let mut report = FrameReport::default();
-        let mut last = clock();
-        let mut lap = |stage: Stage, ticks: &mut [u32; 5]| {
-            let now = clock();
-            let t = &mut ticks[stage as usize];
-            *t = t.wrapping_add(now.wrapping_sub(last));
-            last = now;
-        };
-        let frame = self.frame(n)?;
-        lap(Stage::Setup, &mut report.ticks);
-        self.transform(&frame);
-        lap(Stage::Transform, &mut report.ticks);
-        let mut stats = DrawStats {
-            shaded: self.shade(&frame),
-            ..DrawStats::default()
-        };
-        lap(Stage::Shade, &mut report.ticks);
-        let rows = band.rows().max(1);
-        let mut y0: u16 = 0;
-        while y0 < HEIGHT {
-            band.move_to(y0);
-            band.clear(BACKGROUND);
-            self.draw_band(&frame, band, &mut stats)?;
-            lap(Stage::Raster, &mut report.ticks);
-            flush(band).map_err(FrameError::Flush)?;
-            lap(Stage::Flush, &mut report.ticks);
-            y0 = y0.saturating_add(rows);
-        }
-        report.stats = stats;
-        Ok(report)
+        render_stages(self, n, band, clock, flush)
     }
 }

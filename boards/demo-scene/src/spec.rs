@@ -29,7 +29,7 @@ use arealight::{
     Real, Rgb, Scene, SceneLight, SkyGround, SphereLight, Vec3,
 };
 
-use crate::{FrameError, FrameReport, Glow, Stage};
+use crate::{render_stages, FrameError, FrameReport, Glow, Stages};
 
 /// The most lights of a scene.
 pub const MAX_LIGHTS: usize = 8;
@@ -519,7 +519,8 @@ impl<'a, T: Real> Player<'a, T> {
 
     /// Renders the scene through `band` (as wide as the camera's viewport, any height), calling
     /// `flush` with each finished band and `clock` between the stages, as
-    /// [`crate::Demo::render_frame`] does (the setup stage is empty: the scene does not move).
+    /// [`crate::Demo::render_frame`] does (the same loop; the setup stage is empty: the scene
+    /// does not move).
     ///
     /// # Errors
     /// The first error of the rasterizer or of `flush`.
@@ -527,17 +528,18 @@ impl<'a, T: Real> Player<'a, T> {
         &mut self,
         band: &mut Band<'_, Rgb565>,
         clock: &mut impl FnMut() -> u32,
-        mut flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
+        flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
     ) -> Result<FrameReport, FrameError<E>> {
-        let mut report = FrameReport::default();
-        let mut last = clock();
-        let mut lap = |stage: Stage, ticks: &mut [u32; 5]| {
-            let now = clock();
-            let t = &mut ticks[stage as usize];
-            *t = t.wrapping_add(now.wrapping_sub(last));
-            last = now;
-        };
-        lap(Stage::Setup, &mut report.ticks);
+        render_stages(self, 0, band, clock, flush)
+    }
+}
+
+impl<T: Real> Stages for Player<'_, T> {
+    type Frame = ();
+    fn setup(&self, _n: u32) -> Result<(), RasterError> {
+        Ok(())
+    }
+    fn transform(&mut self, _frame: &()) {
         let camera = &self.camera;
         for p in self.objects.iter_mut().flatten() {
             match p.finish {
@@ -545,42 +547,47 @@ impl<'a, T: Real> Player<'a, T> {
                 Finish::Emissive(_) => p.mesh.transform_unlit(camera, &p.transform),
             }
         }
-        lap(Stage::Transform, &mut report.ticks);
-        let mut stats = DrawStats::default();
+    }
+    fn shade(&mut self, _frame: &()) -> u32 {
+        let camera = &self.camera;
+        let mut calls = 0;
         for p in self.objects.iter_mut().flatten() {
-            stats.shaded += match &p.finish {
+            calls += match &p.finish {
                 Finish::Lit(m) => p.mesh.shade(camera, &Lit::new(&self.lights, m), &p.options),
                 Finish::Emissive(g) => p.mesh.shade(camera, g, &p.options),
             };
         }
-        lap(Stage::Shade, &mut report.ticks);
-        let rows = band.rows().max(1);
-        let mut y0: u16 = 0;
-        while y0 < camera.height() {
-            band.move_to(y0);
-            band.clear(self.background);
-            for p in self.objects.iter().flatten() {
-                let s = match &p.finish {
-                    Finish::Lit(m) => p.mesh.draw(
-                        camera,
-                        band,
-                        &Lit::new(&self.lights, m),
-                        &p.options,
-                        self.table,
-                    )?,
-                    Finish::Emissive(g) => p.mesh.draw(camera, band, g, &p.options, self.table)?,
-                };
-                stats.triangles += s.triangles;
-                stats.rasterized += s.rasterized;
-                stats.shaded += s.shaded;
-                stats.pixels += s.pixels;
-            }
-            lap(Stage::Raster, &mut report.ticks);
-            flush(band).map_err(FrameError::Flush)?;
-            lap(Stage::Flush, &mut report.ticks);
-            y0 = y0.saturating_add(rows);
+        calls
+    }
+    fn draw_band(
+        &self,
+        _frame: &(),
+        band: &mut Band<'_, Rgb565>,
+        stats: &mut DrawStats,
+    ) -> Result<(), RasterError> {
+        let camera = &self.camera;
+        for p in self.objects.iter().flatten() {
+            let s = match &p.finish {
+                Finish::Lit(m) => p.mesh.draw(
+                    camera,
+                    band,
+                    &Lit::new(&self.lights, m),
+                    &p.options,
+                    self.table,
+                )?,
+                Finish::Emissive(g) => p.mesh.draw(camera, band, g, &p.options, self.table)?,
+            };
+            stats.triangles += s.triangles;
+            stats.rasterized += s.rasterized;
+            stats.shaded += s.shaded;
+            stats.pixels += s.pixels;
         }
-        report.stats = stats;
-        Ok(report)
+        Ok(())
+    }
+    fn height(&self) -> u16 {
+        self.camera.height()
+    }
+    fn background(&self) -> Rgb565 {
+        self.background
     }
 }
