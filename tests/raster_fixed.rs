@@ -8,7 +8,7 @@
 
 use arealight::raster::{
     draw, mesh, Affine, Band, Camera, Cull, DrawOptions, EncodeTable, Encoding, Lit, Material,
-    Mesh, PreparedMesh, PreparedVertex, Projection, Rgb888, Shading, Vertex,
+    Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb888, Shading, Vertex,
 };
 use arealight::{Ambient, Fixed22, Real, Rgb, Vec3};
 
@@ -384,4 +384,50 @@ fn float_mesh_angles_are_unchanged() {
         check::<f64>(n);
         check::<arealight::Fast32>(n);
     }
+}
+
+/// Out-of-range camera positions and translations in Fixed22 are refused with
+/// `Error::OutOfRange` instead of drawing a wrong frame (an eye at z = 5 used to render
+/// without an error, its clip coordinates and shading points beyond the range the type and
+/// the lights handle); the float types accept the same values. `Camera::project` answers
+/// `None` for a point beyond the range.
+#[test]
+fn fixed22_refuses_positions_beyond_the_coordinate_limit() {
+    use arealight::Error;
+    let out = |what| Some(RasterError::Model(Error::OutOfRange(what)));
+    let cam = |eye: [f64; 3], target: [f64; 3]| {
+        Camera::<Fixed22>::new(
+            v(eye[0], eye[1], eye[2]),
+            v(target[0], target[1], target[2]),
+            v(0.0, 1.0, 0.0),
+            Projection::Perspective {
+                fov_y: Fixed22::from_f64(0.9),
+            },
+            240,
+            240,
+        )
+    };
+    assert_eq!(cam([0.0, 0.0, 5.0], [0.0; 3]).err(), out("eye"));
+    assert_eq!(cam([0.0, 0.0, -4.01], [0.0; 3]).err(), out("eye"));
+    assert_eq!(cam([0.0, 0.0, 3.0], [0.0, 4.5, 0.0]).err(), out("target"));
+    assert!(cam([0.0, 0.0, 4.0], [0.0, -4.0, 0.0]).is_ok());
+    let cam64 = Camera::<f64>::new(
+        v(0.0, 0.0, 5.0),
+        v(0.0, 0.0, -100.0),
+        v(0.0, 1.0, 0.0),
+        Projection::Perspective { fov_y: 0.9 },
+        240,
+        240,
+    );
+    assert!(cam64.is_ok());
+    assert_eq!(
+        Affine::translation(v::<Fixed22>(0.0, 0.0, 4.5)).err(),
+        out("t")
+    );
+    assert!(Affine::translation(v::<f32>(0.0, 0.0, 4.5)).is_ok());
+    assert!(Affine::translation(v::<Fixed22>(-4.0, 4.0, 0.0)).is_ok());
+    let c = camera::<Fixed22>(240, 240);
+    assert!(c.project(v(0.0, 0.0, -4.0)).is_some());
+    assert_eq!(c.project(v(0.0, 0.0, -4.5)), None);
+    assert!(camera::<f64>(240, 240).project(v(0.0, 0.0, -4.5)).is_some());
 }

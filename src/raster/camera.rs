@@ -37,11 +37,13 @@ impl<T: Real> Affine<T> {
     /// A translation by `t`.
     ///
     /// # Errors
-    /// [`RasterError::Model`] with [`Error::NotFinite`] (`"t"`).
+    /// [`RasterError::Model`] with [`Error::NotFinite`] (`"t"`), or [`Error::OutOfRange`]
+    /// (`"t"`) for a component beyond [`Real::COORDINATE_LIMIT`] (fixed point only: a
+    /// translated scene would leave the positions' range). Not checked: a composition
+    /// ([`Affine::then`]) or a mesh whose transformed vertices leave the range; the lights
+    /// then shade points beyond it (fixed point: finite, not meaningful).
     pub fn translation(t: Vec3<T>) -> Result<Self, RasterError> {
-        if !t.is_finite() {
-            return Err(Error::NotFinite("t").into());
-        }
+        t.check_position("t")?;
         let mut a = Self::identity();
         a.t = t;
         Ok(a)
@@ -183,7 +185,10 @@ impl<T: Real> Camera<T> {
     /// [`RasterError::Model`] for a non-finite or zero vector, `up` parallel to the view
     /// ([`Error::Parallel`]), a non-finite projection parameter;
     /// [`RasterError::BadParameter`] (`"fov_y"`, `"half_height"`) for one out of range;
-    /// [`RasterError::BadSize`] (`"viewport"`) for a side of 0 or above [`MAX_VIEWPORT`].
+    /// [`RasterError::BadSize`] (`"viewport"`) for a side of 0 or above [`MAX_VIEWPORT`];
+    /// [`RasterError::Model`] with [`Error::OutOfRange`] (`"eye"`, `"target"`) for a
+    /// coordinate beyond [`Real::COORDINATE_LIMIT`] (fixed point only: the view vectors and
+    /// clip coordinates would leave the type's range, and the lights refuse such points).
     pub fn new(
         eye: Vec3<T>,
         target: Vec3<T>,
@@ -195,12 +200,8 @@ impl<T: Real> Camera<T> {
         if width == 0 || height == 0 || width > MAX_VIEWPORT || height > MAX_VIEWPORT {
             return Err(RasterError::BadSize("viewport"));
         }
-        if !eye.is_finite() {
-            return Err(Error::NotFinite("eye").into());
-        }
-        if !target.is_finite() {
-            return Err(Error::NotFinite("target").into());
-        }
+        eye.check_position("eye")?;
+        target.check_position("target")?;
         let (forward, dist) = (target - eye)
             .normalize_with_length()
             .ok_or(Error::ZeroLength("target - eye"))?;
@@ -328,10 +329,12 @@ impl<T: Real> Camera<T> {
     /// The pixel coordinates `(x, y)` (`y` down, pixel centres at `i + 0.5`) of a world point
     /// in front of the camera, or `None` behind the near plane or where a coordinate does not
     /// fit the type (never for the float types; [`Fixed22`](crate::Fixed22): at 512 pixels
-    /// and beyond, or below -512: its range). Accuracy: the float types round
+    /// and beyond, or below -512: its range; and for `p` beyond [`Real::COORDINATE_LIMIT`]).
+    /// Accuracy: the float types round
     /// `(x_ndc + 1) width / 2` once (as before); fixed point is exact from its normalized device
     /// coordinates. Cost: a clip transform, a reciprocal, two `f64` products.
     pub fn project(&self, p: Vec3<T>) -> Option<(T, T)> {
+        p.check_position("p").ok()?;
         let c = self.clip(p);
         if !(c[2] >= self.near) {
             return None;
