@@ -68,12 +68,14 @@ use fixed::types::I10F22;
 /// The model ids of `docs/models.md` that the fixed-point path supports within 1/1024 (the
 /// README's fixed-point table): the eval protocol's `--backend fixed` answers these and
 /// "unsupported" for the others. The other models compile for `Fixed22` too, untested.
-pub const SUPPORTED_MODELS: [&str; 16] = [
+pub const SUPPORTED_MODELS: [&str; 18] = [
     "hemi_const",
     "hemi_cos",
     "sky_overcast",
     "sky_ground",
+    "cap_lambert",
     "cap_lambert_hermite",
+    "sphere_lambert",
     "sphere_lambert_hermite",
     "polygon_lambert",
     "phong_hemi_const",

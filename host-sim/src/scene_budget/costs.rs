@@ -456,15 +456,6 @@ const KIND_MODELS: &[(&str, &str, &str)] = &[
     ("sh9", "sh9_irradiance", ""),
 ];
 
-/// The models' ids in the QEMU budget for the fixed-point sphere and cap (Hermite there).
-fn budget_model(backend: &str, model: &str) -> String {
-    match (backend, model) {
-        ("fixed", "sphere_lambert") => "sphere_lambert_hermite".into(),
-        ("fixed", "cap_lambert") => "cap_lambert_hermite".into(),
-        _ => model.into(),
-    }
-}
-
 /// Writes the cost table from the measurements: `rp2040` from `rp2040_dir`
 /// (calibration.csv, frames.csv of `boards/rp2040-emu/check.sh`), `stm32f411` from
 /// `qemu_frame_dir` (calibration.csv, frames.csv of the QEMU frame test), derived items
@@ -512,7 +503,7 @@ pub fn calibrate(
         rows.insert((backend.into(), "flush_byte".into()), (flush, "frame"));
         let count = |b: &str, model: &str| {
             counts
-                .get(&(target.to_owned(), b.to_owned(), budget_model(b, model)))
+                .get(&(target.to_owned(), b.to_owned(), model.to_owned()))
                 .copied()
         };
         // Kinds the calibration did not measure: the calibrated backend's cost of a measured
