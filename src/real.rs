@@ -198,25 +198,20 @@ pub trait Real:
         let x = self.clamp(-Self::ONE, Self::ONE);
         ((Self::ONE - x) * (Self::ONE + x)).sqrt().atan2(x)
     }
-    /// `(v / d, d)` with `d` from `m`, meant as `max(|x|, |y|, |z|)`: the rescaling that lets
-    /// lengths be computed without overflow or underflow, with the scale `d` it divided by.
-    /// Total: `d` comes from the largest of `m` and the components' magnitudes, so an `m`
-    /// below the largest component (or `m <= 0`) is harmless (the result is still exact to the
-    /// type's rounding, every component at most 1 in magnitude, 2 in fixed point), an `m`
-    /// above it divides by `m`. The float types take `d` = that largest value (three
-    /// absolute values and comparisons, one reciprocal, three products), `(v, 1)` when it is
-    /// 0 or infinite (a zero vector, an infinite component; a NaN component stays NaN, as it
-    /// came in); the fixed-point type a
-    /// power of two near it (exact shifts: `1/m` itself would saturate for `m < 1/512`, and a
-    /// division costs hundreds of instructions on Cortex-M0; see [`Fixed22`]'s `rescale3`).
+    /// `(v / d, d)` for `m = max(|x|, |y|, |z|) > 0`: the rescaling that lets lengths be
+    /// computed without overflow or underflow, with the scale `d` it divided by. The float
+    /// types take `d = m` as given (one reciprocal, three products: the cost of the polygon
+    /// edge terms' hot path, which pass the largest component), so they behave as their `/`:
+    /// an `m` below the largest component gives components above 1 (exact to rounding, no
+    /// wrap), and `m <= 0`, a NaN `m` or one so small that `v / m` overflows gives non-finite
+    /// components. The fixed-point type is total: it takes a power of two from the largest
+    /// of `m` and the components, whatever `m` is (exact shifts: `1/m` itself would saturate
+    /// for `m < 1/512`, and a division costs hundreds of instructions on Cortex-M0; see
+    /// [`Fixed22`]'s `rescale3`).
     #[inline(always)]
     fn rescale3(v: [Self; 3], m: Self) -> ([Self; 3], Self) {
-        let d = m.max(v[0].abs()).max(v[1].abs()).max(v[2].abs());
-        if !(d > Self::ZERO) || !d.is_finite() {
-            return (v, Self::ONE);
-        }
-        let r = Self::ONE / d;
-        ([v[0] * r, v[1] * r, v[2] * r], d)
+        let r = Self::ONE / m;
+        ([v[0] * r, v[1] * r, v[2] * r], m)
     }
     /// `1/sqrt(self)` for `self > 0`; 0 otherwise (never infinite). The float types compute
     /// `1 / sqrt(x)`; the fixed-point type has its own Newton iteration (no division).
