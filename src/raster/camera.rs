@@ -332,7 +332,8 @@ impl<T: Real> Camera<T> {
     /// and beyond, or below -512: its range; and for `p` beyond [`Real::COORDINATE_LIMIT`]).
     /// Accuracy: the float types round
     /// `(x_ndc + 1) width / 2` once (as before); fixed point is exact from its normalized device
-    /// coordinates. Cost: a clip transform, a reciprocal, two `f64` products.
+    /// coordinates. Cost: a clip transform, a reciprocal, two `f64` products (fixed point: and a
+    /// range test of `p`).
     pub fn project(&self, p: Vec3<T>) -> Option<(T, T)> {
         p.check_position("p").ok()?;
         let c = self.clip(p);
