@@ -258,17 +258,23 @@ impl<T: Real> ClippedEdge<T> {
 #[inline]
 pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: Vec3<T>) -> T {
     let g = ua.cross(d);
-    let m = g.max_abs();
     let dot = ua.dot(ub);
-    if !products_in_range(m, dot.abs()) {
-        // (Fixed point: never; decided at compile time.)
-        return if T::RESOLUTION > T::ZERO {
-            T::ZERO
-        } else {
-            edge_angle_term_rescaled(ua, ub, d, k)
-        };
+    if T::RESOLUTION > T::ZERO {
+        // Fixed point (decided at compile time): one exponent, no range to leave; `G` is scaled
+        // by its largest component before it is squared.
+        return edge_angle_finish(g, g.max_abs(), dot, k);
     }
-    edge_angle_finish(g, m, dot, k)
+    // Floats: where `|G|^2` is a normal, finite number (and `ua.ub` in range), `|G|` and
+    // `1/|G|` come from it directly, with no scaling (the hot path: every edge of a scene at
+    // any ordinary scale); elsewhere the edge is scaled by a power of two first (cold).
+    let gg = g.dot(g);
+    let lo = T::TINY * T::TINY;
+    let hi = T::ONE / lo;
+    if gg >= lo && gg <= hi && dot.abs() <= hi {
+        let (s, inv) = gg.sqrt_rsqrt();
+        return (s.atan2(dot) * g.dot(k) * inv).finite_or_zero();
+    }
+    edge_angle_term_rescaled(ua, ub, d, k)
 }
 
 /// [`edge_angle_term`] for an edge whose products leave the normal range: the same term from
