@@ -431,3 +431,63 @@ fn fixed22_refuses_positions_beyond_the_coordinate_limit() {
     assert_eq!(c.project(v(0.0, 0.0, -4.5)), None);
     assert!(camera::<f64>(240, 240).project(v(0.0, 0.0, -4.5)).is_some());
 }
+
+/// A mesh whose transformed vertices leave Fixed22's coordinate range (a plane 3 units wide,
+/// corners at 1.5, scaled by 3: corners at 4.5) is refused by `PreparedMesh::draw` with `Error::OutOfRange("vertex")`
+/// and draws nothing, until a transform brings it back in range; f32 draws the same mesh.
+#[test]
+fn fixed22_prepared_mesh_refuses_vertices_beyond_the_coordinate_limit() {
+    use arealight::raster::{
+        Band, Cull, EncodeTable, Encoding, Mesh, PreparedMesh, PreparedVertex, Rgb565, Shader,
+        Shading,
+    };
+    use arealight::{Error, Rgb};
+    struct White;
+    impl<T: Real> Shader<T> for White {
+        fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+            Rgb::splat(T::ONE)
+        }
+    }
+    fn attempt<T: Real>(scale: f64) -> Result<u32, RasterError> {
+        let c = mesh::plane_counts(2, 2);
+        let (mut verts, mut tris) = (
+            vec![Vertex::new(v(0.0, 0.0, 0.0), v(0.0, 1.0, 0.0)); c.vertices],
+            vec![[0u16; 3]; c.triangles],
+        );
+        mesh::plane(
+            T::from_f64(3.0),
+            T::from_f64(3.0),
+            2,
+            2,
+            &mut verts,
+            &mut tris,
+        )?;
+        let m = Mesh::new(&verts, &tris)?;
+        let mut store = vec![PreparedVertex::EMPTY; c.vertices];
+        let mut p = PreparedMesh::new(m, &mut store)?;
+        let cam = camera::<T>(64, 64);
+        let xf =
+            Affine::scale(v(scale, 1.0, scale))?.then(&Affine::translation(v(0.0, -0.8, 0.0))?);
+        let mut opts = DrawOptions::new(Shading::Gouraud);
+        opts.cull = Cull::None;
+        p.transform(&cam, &xf);
+        p.shade(&cam, &White, &opts);
+        let table = EncodeTable::new::<T>(Encoding::Linear);
+        let (mut px, mut depth) = (vec![Rgb565(0); 64 * 64], vec![0u16; 64 * 64]);
+        let mut band = Band::new(&mut px, Some(&mut depth), 64, 0)?;
+        band.clear(Rgb565(0));
+        let s = p.draw(&cam, &mut band, &White, &opts, &table)?;
+        // Nothing drawn on a refusal: checked by the caller through the error.
+        Ok(s.pixels)
+    }
+    assert_eq!(
+        attempt::<Fixed22>(3.0).err(),
+        Some(RasterError::Model(Error::OutOfRange("vertex")))
+    );
+    assert!(attempt::<f32>(1.5).unwrap() > 0);
+    // In range (corners at 3): drawn as in f32.
+    assert_eq!(
+        attempt::<Fixed22>(1.0).unwrap(),
+        attempt::<f32>(1.0).unwrap()
+    );
+}

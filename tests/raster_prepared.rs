@@ -183,7 +183,7 @@ fn scene<T: Real>(w: u16, h: u16, shading: [Shading; 3]) -> Scene<T> {
         vec![zero_vertex::<T>(); mesh::plane_counts(8, 8).vertices],
         vec![[0u16; 3]; mesh::plane_counts(8, 8).triangles],
     );
-    mesh::plane(k(12.0), k(12.0), 8, 8, &mut floor.0, &mut floor.1).unwrap();
+    mesh::plane(k(8.0), k(8.0), 8, 8, &mut floor.0, &mut floor.1).unwrap();
     let red = Material::new(Rgb::new(k(0.8), k(0.2), k(0.1)), Rgb::splat(k(0.4)), 24).unwrap();
     let teal = Material::new(Rgb::new(k(0.1), k(0.5), k(0.5)), Rgb::splat(k(0.5)), 12).unwrap();
     let grey = Material::matte(Rgb::splat(k(0.6))).unwrap();

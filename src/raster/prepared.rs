@@ -162,6 +162,8 @@ pub struct PreparedMesh<'m, 's, T> {
     verts: &'s mut [PreparedVertex<T>],
     /// Screen rows `[top, bottom)` the mesh can cover (all rows if a vertex is clipped).
     rows: (i32, i32),
+    /// A transformed vertex lies beyond `T::COORDINATE_LIMIT` (fixed point): `draw` refuses.
+    out_of_range: bool,
 }
 
 impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
@@ -190,6 +192,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             mesh,
             verts,
             rows: (0, 0),
+            out_of_range: false,
         })
     }
 
@@ -206,8 +209,11 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
 
     /// Transforms every vertex through `transform` and `camera` for this frame: world
     /// position, unit normal, clip position, snapped screen position and depth. Clears the
-    /// shaded colours. Cost per vertex: 2 x 9 multiply-adds, 1 normalization, 1 division,
-    /// the projection (~15 operations in `T`).
+    /// shaded colours. A vertex that lands beyond [`Real::COORDINATE_LIMIT`] (fixed point
+    /// only) is marked, and [`PreparedMesh::draw`] refuses the mesh until the next transform.
+    /// Cost per vertex: 2 x 9 multiply-adds, 1 normalization, 1 division, the projection
+    /// (~15 operations in `T`); fixed point adds a range test (3 absolute values, 3
+    /// comparisons).
     pub fn transform(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
         self.transform_with(camera, transform, true);
     }
@@ -228,9 +234,13 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         let inv_range = T::ONE / range;
         let (mut top, mut bottom) = (i32::MAX, i32::MIN);
         let mut clipped = false;
+        self.out_of_range = false;
         for (v, src) in self.verts.iter_mut().zip(self.mesh.vertices()) {
             let p = transform.point(src.position);
-            if !p.is_finite() {
+            // Folds away for the float types (no limit).
+            let beyond = T::COORDINATE_LIMIT < f64::MAX && p.check_position("vertex").is_err();
+            self.out_of_range |= beyond && p.is_finite();
+            if !p.is_finite() || beyond {
                 *v = PreparedVertex {
                     outside: u8::MAX,
                     ..PreparedVertex::EMPTY
@@ -401,7 +411,9 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     ///
     /// # Errors
     /// [`RasterError::BadSize`] (`"band width"`) when the band is not as wide as the camera's
-    /// viewport.
+    /// viewport; [`RasterError::Model`] with [`crate::Error::OutOfRange`] (`"vertex"`) when
+    /// [`PreparedMesh::transform`] put a vertex beyond [`Real::COORDINATE_LIMIT`] (fixed point
+    /// only; nothing is drawn).
     pub fn draw<P, S>(
         &self,
         camera: &Camera<T>,
@@ -416,6 +428,9 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     {
         if band.width() != camera.width {
             return Err(RasterError::BadSize("band width"));
+        }
+        if self.out_of_range {
+            return Err(crate::Error::OutOfRange("vertex").into());
         }
         let mut stats = DrawStats {
             triangles: self.mesh.triangles().len() as u32,
