@@ -205,7 +205,7 @@ impl<T: Real> CapLight<T> {
     ///
     /// <!-- BEGIN acc-cap_lambert: target/accuracy/model-cap_lambert.md -->
     /// Measured: f64 within 1.2e-13 of its reference (the independent quadrature); against f64,
-    /// f32 3.3e-7, Fast32 1.1e-5; 306 052 cases in all (`docs/accuracy.md`).
+    /// f32 3.3e-7, Fast32 6.7e-6, Fixed22 1.4e-6; 326 486 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-cap_lambert -->
     #[inline]
     pub fn lambert(&self, n: Vec3<T>) -> T {
@@ -252,7 +252,7 @@ impl<T: Real> CapLight<T> {
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-cap_lambert_hermite: target/accuracy/model-cap_lambert_hermite.md -->
-    /// Measured: against f64, f32 2.5e-7, Fast32 9.4e-6, Fixed22 1.2e-6; 325 752 cases in all
+    /// Measured: against f64, f32 2.5e-7, Fast32 6.3e-6, Fixed22 1.2e-6; 325 752 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-cap_lambert_hermite -->
     #[inline]
@@ -347,8 +347,8 @@ impl<T: Real> SphereLight<T> {
     ///
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->
     /// Measured: f64 within 4.4e-16 of its reference (the independent quadrature); against f64,
-    /// f32 4.6e-7 (ill-conditioned: 1.7e-6), Fast32 3.0e-5 (ill-conditioned: 8.5e-5); 60 516
-    /// cases in all (`docs/accuracy.md`).
+    /// f32 4.6e-7 (ill-conditioned: 1.7e-6), Fast32 6.6e-6 (ill-conditioned: 6.3e-6), Fixed22
+    /// 8.4e-5; 80 588 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert -->
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
@@ -374,8 +374,8 @@ impl<T: Real> SphereLight<T> {
     /// Fallback: as [`SphereLight::lambert`].
     ///
     /// <!-- BEGIN acc-sphere_lambert_hermite: target/accuracy/model-sphere_lambert_hermite.md -->
-    /// Measured: against f64, f32 5.1e-7 (ill-conditioned: 1.6e-6), Fast32 2.9e-5
-    /// (ill-conditioned: 8.3e-5), Fixed22 9.9e-5; 80 216 cases in all (`docs/accuracy.md`).
+    /// Measured: against f64, f32 5.1e-7 (ill-conditioned: 1.6e-6), Fast32 8.7e-6
+    /// (ill-conditioned: 9.1e-6), Fixed22 9.9e-5; 80 216 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert_hermite -->
     #[inline]
     pub fn lambert_hermite(&self, p: Vec3<T>, n: Vec3<T>) -> T {

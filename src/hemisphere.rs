@@ -47,7 +47,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
     /// Measured: f64 within 5.6e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.6e-7, Fast32 4.5e-6, Fixed22 8.5e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.6e-7, Fast32 1.6e-7, Fixed22 8.5e-7; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_const -->
     #[inline]
     pub fn lambert_const(&self, n: Vec3<T>) -> T {
@@ -66,7 +66,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-hemi_cos: target/accuracy/model-hemi_cos.md -->
     /// Measured: f64 within 6.7e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.5e-7, Fast32 5.4e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.5e-7, Fast32 3.5e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_cos -->
     #[inline]
     pub fn lambert_cos(&self, n: Vec3<T>) -> T {
@@ -123,7 +123,7 @@ impl<T: Real> OvercastSky<T> {
     ///
     /// <!-- BEGIN acc-sky_overcast: target/accuracy/model-sky_overcast.md -->
     /// Measured: f64 within 1.1e-15 of its reference (the independent quadrature); against f64,
-    /// f32 1.7e-7, Fast32 4.1e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.7e-7, Fast32 2.9e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_overcast -->
     #[inline]
     pub fn lambert(&self, n: Vec3<T>) -> T {
@@ -182,7 +182,7 @@ impl<T: Real> SkyGround<T> {
     ///
     /// <!-- BEGIN acc-sky_ground: target/accuracy/model-sky_ground.md -->
     /// Measured: f64 within 5.6e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.3e-7, Fast32 3.7e-6, Fixed22 9.7e-7; 205 878 cases in all (`docs/accuracy.md`).
+    /// f32 1.3e-7, Fast32 1.3e-7, Fixed22 9.7e-7; 205 878 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_ground -->
     #[inline]
     pub fn irradiance(&self, n: Vec3<T>) -> Rgb<T> {

@@ -544,7 +544,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// <!-- BEGIN acc-axial_moment: target/accuracy/model-axial_moment.md -->
     /// Measured: f64 within 2.9e-13 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 4.8e-7 (ill-conditioned: 6.0e-7; near boundary: 5.8e-5), Fast32 1.1e-4
-    /// (ill-conditioned: 2.0e-4); 19 248 cases in all (`docs/accuracy.md`).
+    /// (ill-conditioned: 1.8e-4); 19 248 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-axial_moment -->
     #[inline]
     pub fn axial_moment(&self, p: Vec3<T>, w: Vec3<T>, m: u32) -> T {
@@ -610,8 +610,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// <!-- BEGIN acc-double_axis_moment: target/accuracy/model-double_axis_moment.md -->
     /// Measured: f64 within 9.7e-14 of its reference (the independent quadrature, adversarial);
-    /// against f64, f32 4.9e-7 (ill-conditioned: 3.7e-7; near boundary: 2.9e-5), Fast32 7.4e-5
-    /// (ill-conditioned: 7.0e-5); 19 255 cases in all (`docs/accuracy.md`).
+    /// against f64, f32 4.9e-7 (ill-conditioned: 3.7e-7; near boundary: 2.9e-5), Fast32 5.9e-5
+    /// (ill-conditioned: 5.7e-5); 19 255 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-double_axis_moment -->
     #[inline]
     pub fn double_axis_moment(&self, p: Vec3<T>, w: Vec3<T>, v: Vec3<T>, m: u32) -> T {
@@ -665,8 +665,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// <!-- BEGIN acc-directional_luminaire: target/accuracy/model-directional_luminaire.md -->
     /// Measured: f64 within 4.2e-12 of its reference (the independent quadrature, adversarial);
-    /// against f64, f32 5.8e-7 (ill-conditioned: 1.7e-7; near boundary: 5.1e-5), Fast32 8.0e-5
-    /// (ill-conditioned: 1.0e-5); 18 877 cases in all (`docs/accuracy.md`).
+    /// against f64, f32 5.8e-7 (ill-conditioned: 1.7e-7; near boundary: 5.1e-5), Fast32 2.7e-5
+    /// (ill-conditioned: 8.9e-6); 18 881 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-directional_luminaire -->
     #[inline]
     pub fn directional_luminaire(&self, p: Vec3<T>, n: Vec3<T>, axis: Vec3<T>, m: u32) -> T {
@@ -706,8 +706,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// <!-- BEGIN acc-glossy_reflection: target/accuracy/model-glossy_reflection.md -->
     /// Measured: f64 within 1.9e-12 of its reference (the independent quadrature, h <= 1e-8);
-    /// against f64, f32 5.1e-7 (ill-conditioned: 3.7e-7; near boundary: 6.4e-5), Fast32 2.0e-5
-    /// (ill-conditioned: 1.4e-5); 18 881 cases in all (`docs/accuracy.md`).
+    /// against f64, f32 5.1e-7 (ill-conditioned: 3.7e-7; near boundary: 6.4e-5), Fast32 1.4e-5
+    /// (ill-conditioned: 6.1e-6); 18 886 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-glossy_reflection -->
     #[inline]
     pub fn glossy_reflection(&self, p: Vec3<T>, n: Vec3<T>, e: Vec3<T>, m: u32) -> T {
@@ -742,8 +742,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// <!-- BEGIN acc-glossy_transmission: target/accuracy/model-glossy_transmission.md -->
     /// Measured: f64 within 1.9e-12 of its reference (the independent quadrature, adversarial);
-    /// against f64, f32 2.4e-7 (ill-conditioned: 1.9e-7; near boundary: 9.1e-6), Fast32 1.3e-5
-    /// (ill-conditioned: 8.1e-6); 18 849 cases in all (`docs/accuracy.md`).
+    /// against f64, f32 2.4e-7 (ill-conditioned: 1.9e-7; near boundary: 9.1e-6), Fast32 1.2e-5
+    /// (ill-conditioned: 6.4e-6); 18 848 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-glossy_transmission -->
     #[inline]
     pub fn glossy_transmission(&self, p: Vec3<T>, n: Vec3<T>, e: Vec3<T>, m: u32) -> T {
@@ -798,7 +798,7 @@ pub fn try_lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> Result
 ///
 /// <!-- BEGIN acc-lune_normalization: target/accuracy/model-lune_normalization.md -->
 /// Measured: f64 within 4.4e-14 of its reference (the independent quadrature); against f64,
-/// f32 3.9e-7, Fast32 1.3e-5; 6 400 cases in all (`docs/accuracy.md`).
+/// f32 3.9e-7, Fast32 9.9e-6; 6 400 cases in all (`docs/accuracy.md`).
 /// <!-- END acc-lune_normalization -->
 #[inline]
 pub fn lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> T {

@@ -260,7 +260,7 @@ impl<T: Real> CapLight<T> {
     /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
     /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,
     /// f32 2.0e-6 at m = 255 (high m: 2.2e-6 at m = 255; ill-conditioned: 2.5e-6 at m = 255),
-    /// Fast32 1.2e-4 at m = 255 (ill-conditioned: 1.2e-4 at m = 255), Fixed22 1.6e-4 at m = 0;
+    /// Fast32 1.2e-4 at m = 255 (ill-conditioned: 1.1e-4 at m = 255), Fixed22 1.6e-4 at m = 0;
     /// 200 854 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_cap -->
     #[inline]
@@ -295,8 +295,8 @@ impl<T: Real> SphereLight<T> {
     ///
     /// <!-- BEGIN acc-phong_sphere: target/accuracy/model-phong_sphere.md -->
     /// Measured: f64 within 7.9e-14 of its reference (the independent quadrature); against f64,
-    /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.4e-5 at m = 255
-    /// (ill-conditioned: 3.5e-4 at m = 255), Fixed22 4.3e-4 at m = 255; 62 580 cases in all
+    /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.6e-5 at m = 255
+    /// (ill-conditioned: 1.2e-4 at m = 255), Fixed22 4.3e-4 at m = 255; 62 580 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_sphere -->
     #[inline]
@@ -456,8 +456,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// <!-- BEGIN acc-phong_polygon: target/accuracy/model-phong_polygon.md -->
     /// Measured: f64 within 3.1e-13 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 1.6e-6 at m = 255 (ill-conditioned: 1.8e-6 at m = 255; near boundary:
-    /// 1.2e-4 at m = 255), Fast32 5.2e-5 at m = 255 (ill-conditioned: 3.1e-5 at m = 255; near
-    /// boundary: 3.3e-4 at m = 0), Fixed22 2.0e-5 at m = 255; 61 089 cases in all
+    /// 1.2e-4 at m = 255), Fast32 2.9e-5 at m = 0 (ill-conditioned: 2.9e-5 at m = 0; near
+    /// boundary: 1.2e-4 at m = 255), Fixed22 2.0e-5 at m = 255; 61 089 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_polygon -->
     #[inline]

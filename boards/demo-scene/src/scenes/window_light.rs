@@ -22,7 +22,7 @@ pub const SCENE: SceneSpec = SceneSpec {
         width: 240,
         height: 240,
     },
-    exposure: 4.370065749503668,
+    exposure: 4.3700657495036666,
     background: [60, 70, 90],
     encoding: Encoding::Srgb,
     lights: &[
