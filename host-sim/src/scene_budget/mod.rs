@@ -407,55 +407,42 @@ fn culling(reference: &Parsed<f64>, finishes: &[Finish]) -> Result<Vec<Vec<bool>
         let Finish::Lit { specular, .. } = *f else {
             continue;
         };
-        let pts: Vec<[f64; 3]> = o
+        let pts: Vec<Vec3<f64>> = o
             .mesh
             .verts
             .iter()
-            .map(|v| o.xf.point(v.position).to_f64())
+            .map(|v| o.xf.point(v.position))
             .collect();
         let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for p in &pts {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
+            for (k, x) in p.to_f64().into_iter().enumerate() {
+                lo[k] = lo[k].min(x);
+                hi[k] = hi[k].max(x);
             }
         }
-        let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
-        let r = pts
-            .iter()
-            .map(|p| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt())
-            .fold(0.0, f64::max);
-        let mut bounds = ObjectBounds::sphere(Vec3::from_f64(c), r * (1.0 + 1e-9) + 1e-12)
+        let c = Vec3::from_f64([0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k])));
+        let r = pts.iter().map(|&p| (p - c).length()).fold(0.0, f64::max);
+        let mut bounds = ObjectBounds::sphere(c, r * (1.0 + 1e-9) + 1e-12)
             .map_err(|e| format!("culling bounds: {e}"))?;
         if !o.two_sided {
-            let ns: Vec<[f64; 3]> = o
+            let ns: Vec<Vec3<f64>> = o
                 .mesh
                 .verts
                 .iter()
-                .filter_map(|v| {
-                    let n = o.xf.normal(v.normal).to_f64();
-                    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-                    (l > 0.0).then(|| n.map(|x| x / l))
-                })
+                .filter_map(|v| o.xf.normal(v.normal).normalize())
                 .collect();
-            let sum = ns
-                .iter()
-                .fold([0.0; 3], |a, n| [a[0] + n[0], a[1] + n[1], a[2] + n[2]]);
-            let len = (sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]).sqrt();
-            if len > 1e-6 * ns.len() as f64 {
-                let axis = sum.map(|x| x / len);
-                let half = ns
-                    .iter()
-                    .map(|n| {
-                        (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2])
-                            .clamp(-1.0, 1.0)
-                            .acos()
-                    })
-                    .fold(0.0, f64::max);
-                let half = (half * (1.0 + 1e-9) + 1e-12).min(core::f64::consts::PI);
-                bounds = bounds
-                    .with_normal_cone(Vec3::from_f64(axis), half)
-                    .map_err(|e| format!("culling bounds: {e}"))?;
+            let sum = ns.iter().fold(Vec3::from_f64([0.0; 3]), |a, &n| a + n);
+            if let Some((axis, len)) = sum.normalize_with_length() {
+                if len > 1e-6 * ns.len() as f64 {
+                    let half = ns
+                        .iter()
+                        .map(|n| n.dot(axis).clamp(-1.0, 1.0).acos())
+                        .fold(0.0, f64::max);
+                    let half = (half * (1.0 + 1e-9) + 1e-12).min(core::f64::consts::PI);
+                    bounds = bounds
+                        .with_normal_cone(axis, half)
+                        .map_err(|e| format!("culling bounds: {e}"))?;
+                }
             }
         }
         let kept = scene.prepare(&bounds, specular);
