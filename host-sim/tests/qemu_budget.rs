@@ -1,11 +1,14 @@
 //! The QEMU budget harness (`harness = false`): builds `boards/qemu-budget` for Cortex-M4F
-//! (`thumbv7em-none-eabihf`) and Cortex-M0 (`thumbv6m-none-eabi`), runs it under
-//! `qemu-system-arm` with semihosting, and checks what it prints:
+//! (`thumbv7em-none-eabihf`), Cortex-M0 (`thumbv6m-none-eabi`) and RISC-V (`riscv32imc-unknown-
+//! none-elf`, ESP32-C3 class), runs the ARM images under `qemu-system-arm` with semihosting and
+//! the RISC-V image under `qemu-system-riscv32` (`virt`, `-bios none`, an RV32IMC hart, output
+//! on its UART), and checks what they print:
 //!
-//! - the counter self-check (TIM2 of `netduinoplus2` under `-icount shift=0` counts executed
-//!   instructions exactly: a `subs`/`bne` loop of n iterations takes exactly 2n), re-checked
-//!   here from the numbers the firmware prints, with the empty region's count that every
-//!   count is net of (`base` to `base + 2`), and no count wrapped;
+//! - the counter self-check (TIM2 of `netduinoplus2`, and `instret` on `virt`, under
+//!   `-icount shift=0` count executed instructions exactly: a `subs`/`bne` (ARM) or
+//!   `addi`/`bnez` (RISC-V) loop of n iterations takes exactly 2n), re-checked here from the
+//!   numbers the firmware prints, with the empty region's count that every count is net of
+//!   (`base` to `base + 2`), and no count wrapped;
 //! - every model id x backend x input is present, and every value is within the accuracy
 //!   target of the f64 reference computed here from the same (rounded) inputs;
 //! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model);
@@ -18,10 +21,14 @@
 //! `host-sim budget` reads.
 //!
 //! Without `qemu-system-arm` it prints SKIPPED and passes, unless the environment variable
-//! `CI` is set, where it fails. Run it alone with `cargo test -p host-sim --test qemu_budget`.
+//! `CI` is set, where it fails; likewise without `qemu-system-riscv32` (Debian's
+//! `qemu-system-misc`) for the RISC-V target alone (the ARM targets still run). Run it alone
+//! with `cargo test -p host-sim --test qemu_budget`.
 
 #[path = "support/process.rs"]
 mod process;
+#[path = "support/riscv_refs.rs"]
+mod riscv_refs;
 use process::{root, run};
 
 #[allow(dead_code)]
@@ -49,7 +56,7 @@ use object::{Object, ObjectSection, ObjectSymbol, SymbolKind};
 /// on the host. Adding a backend is one entry in [`backends`] (and one in the firmware).
 struct HostBackend {
     name: &'static str,
-    /// The targets that run it (`m4f`, `m0`).
+    /// The targets that run it (`m4f`, `m0`, `rv32imc`).
     targets: &'static [&'static str],
     symbol_type: &'static str,
     round: fn(f64) -> f64,
@@ -109,7 +116,7 @@ fn backends() -> Vec<HostBackend> {
     vec![
         HostBackend {
             name: "f32",
-            targets: &["m4f", "m0"],
+            targets: &["m4f", "m0", "rv32imc"],
             symbol_type: "f32",
             round: round_f32,
             tolerance: tol_f32,
@@ -118,7 +125,7 @@ fn backends() -> Vec<HostBackend> {
         },
         HostBackend {
             name: "f32-fast",
-            targets: &["m4f", "m0"],
+            targets: &["m4f", "m0", "rv32imc"],
             symbol_type: "Fast32",
             round: round_f32,
             tolerance: tol_fast,
@@ -127,7 +134,7 @@ fn backends() -> Vec<HostBackend> {
         },
         HostBackend {
             name: "fixed",
-            targets: &["m0"],
+            targets: &["m0", "rv32imc"],
             symbol_type: "Fixed22",
             round: round_fixed,
             tolerance: tol_fast,
@@ -138,8 +145,9 @@ fn backends() -> Vec<HostBackend> {
 }
 
 /// The targets: triple, short name, cargo profile, the machine that counts, an optional
-/// machine that runs the same image uncounted (a functional check).
-const TARGETS: [(&str, &str, &str, &str, Option<&str>); 2] = [
+/// machine that runs the same image uncounted (a functional check). The QEMU of each is
+/// [`qemu_binary`].
+const TARGETS: [(&str, &str, &str, &str, Option<&str>); 3] = [
     (
         "thumbv7em-none-eabihf",
         "m4f",
@@ -154,7 +162,23 @@ const TARGETS: [(&str, &str, &str, &str, Option<&str>); 2] = [
         "netduinoplus2",
         Some("microbit"),
     ),
+    (
+        "riscv32imc-unknown-none-elf",
+        "rv32imc",
+        "release-rv",
+        "virt",
+        None,
+    ),
 ];
+
+/// The QEMU that runs `triple`'s image.
+fn qemu_binary(triple: &str) -> &'static str {
+    if triple.starts_with("riscv32") {
+        "qemu-system-riscv32"
+    } else {
+        "qemu-system-arm"
+    }
+}
 
 struct Plain;
 impl Meter for Plain {
@@ -201,22 +225,31 @@ fn build(target: &str, profile: &str, target_dir: &Path) -> Result<PathBuf, Stri
     Ok(target_dir.join(target).join(profile).join("qemu-budget"))
 }
 
-fn qemu(machine: &str, elf: &Path) -> Result<String, String> {
-    let mut cmd = Command::new("qemu-system-arm");
-    cmd.args([
-        "-machine",
-        machine,
-        "-nographic",
-        "-monitor",
-        "none",
-        "-serial",
-        "none",
-    ])
-    .args(["-semihosting-config", "enable=on,target=native"])
-    .args(["-icount", "shift=0,align=off,sleep=off"])
-    .arg("-kernel")
-    .arg(elf)
-    .stdin(Stdio::null());
+fn qemu(triple: &str, machine: &str, elf: &Path) -> Result<String, String> {
+    let mut cmd = Command::new(qemu_binary(triple));
+    if triple.starts_with("riscv32") {
+        // `virt` with no firmware (the image starts at the start of RAM in machine mode), an
+        // RV32IMC hart (the default one also has A, F and D: without them any such instruction
+        // traps), output on the UART.
+        cmd.args(["-machine", machine, "-bios", "none"])
+            .args(["-cpu", "rv32,a=false,f=false,d=false"])
+            .args(["-display", "none", "-monitor", "none", "-serial", "stdio"]);
+    } else {
+        cmd.args([
+            "-machine",
+            machine,
+            "-nographic",
+            "-monitor",
+            "none",
+            "-serial",
+            "none",
+        ])
+        .args(["-semihosting-config", "enable=on,target=native"]);
+    }
+    cmd.args(["-icount", "shift=0,align=off,sleep=off"])
+        .arg("-kernel")
+        .arg(elf)
+        .stdin(Stdio::null());
     run(&mut cmd, Duration::from_secs(120), |_| true)
 }
 
@@ -294,15 +327,21 @@ fn parse(out: &str) -> Result<(Vec<Line>, Option<SelfCheck>), String> {
 
 /// The counter self-check, from the firmware's numbers: `base` is the two TIM2 loads alone,
 /// `n<N>` the same loads around N iterations of `subs`/`bne` (all in assembly). Each must be
-/// exactly `base + 2N`, and the loop lengths must include a long one.
+/// exactly `base + 2N`, and the loop lengths must include a long one. On RISC-V the same with
+/// two `csrr instret` around `addi`/`bnez` (`triple` says which).
 ///
 /// `empty` is the count of an empty measured region in Rust (`Tim2::empty`), which the
 /// firmware subtracts from every count: the same two loads plus at most a re-materialized
-/// address of TIM2_CNT (a literal load on the M0, `movw`/`movt` on the M4F), so it must be
-/// `base` to `base + 2` (`counter::EMPTY_SLACK`). Below `base` the loads themselves would not be
-/// counted; above, the empty region holds code that a measured call does not, and every count
-/// would be short by the difference.
-fn check_counter(s: &[(String, u32)]) -> Result<String, String> {
+/// address of TIM2_CNT (a literal load on the M0, `movw`/`movt` on the M4F; nothing on
+/// RISC-V), so it must be `base` to `base + 2` (`counter::EMPTY_SLACK`). Below `base` the loads
+/// themselves would not be counted; above, the empty region holds code that a measured call
+/// does not, and every count would be short by the difference.
+fn check_counter(triple: &str, s: &[(String, u32)]) -> Result<String, String> {
+    let (counter, looped) = if triple.starts_with("riscv32") {
+        ("instret", "addi/bnez")
+    } else {
+        ("TIM2", "subs/bne")
+    };
     let get = |key: &str| s.iter().find(|(k, _)| k == key).map(|kv| kv.1);
     let (base, empty) = (get("base"), get("empty"));
     let loops: Vec<(u32, u32)> = s
@@ -332,12 +371,12 @@ fn check_counter(s: &[(String, u32)]) -> Result<String, String> {
             ))
         }
         _ => Err(format!(
-            "counter self-check FAILED ({shown}): a loop of n subs/bne iterations must read \
-             exactly 2n more on TIM2 than the loads alone (base), and the empty region (empty, \
-             subtracted from every count) must read base to base + {EMPTY_SLACK}; TIM2 does not \
-             count executed instructions exactly on this QEMU ({}), so no instruction count can \
-             be trusted",
-            qemu_version()
+            "counter self-check FAILED ({shown}): a loop of n {looped} iterations must read \
+             exactly 2n more on {counter} than the loads alone (base), and the empty region \
+             (empty, subtracted from every count) must read base to base + {EMPTY_SLACK}; \
+             {counter} does not count executed instructions exactly on this QEMU ({}), so no \
+             instruction count can be trusted",
+            qemu_version(qemu_binary(triple))
         )),
     }
 }
@@ -371,19 +410,21 @@ fn check_no_wrap(short: &str, out: &str, failures: &mut Vec<String>) {
     }
 }
 
-fn qemu_version() -> String {
-    Command::new("qemu-system-arm")
+fn qemu_version(binary: &str) -> String {
+    Command::new(binary)
         .arg("--version")
         .output()
         .ok()
         .and_then(|o| String::from_utf8(o.stdout).ok())
         .and_then(|s| s.lines().next().map(str::to_owned))
-        .unwrap_or_else(|| "qemu-system-arm not found".into())
+        .unwrap_or_else(|| format!("{binary} not found"))
 }
 
 /// Code bytes per kernel symbol: the kernel plus every function it reaches by `bl`/`b.w` or
 /// through a function pointer in its literal pool, plus the constant objects those literal
-/// pools point into (each counted once).
+/// pools point into (each counted once). On RISC-V the references are found by
+/// [`riscv_refs::refs`] instead (`jal`/`j` and branches, `lui`/`auipc` pairs: calls, function
+/// pointers and constant objects).
 ///
 /// Kernels that compile to the same code (e.g. a model's `Fast32` and `f32` kernels when every
 /// operation they use is the same) may be merged by LLVM into one body with several symbols at
@@ -441,10 +482,21 @@ fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
     };
     // The edges of the reference graph.
     let mut edges: Vec<Vec<usize>> = vec![Vec::new(); syms.len()];
+    let riscv = file.architecture() == object::Architecture::Riscv32;
     for (i, s) in syms.iter().enumerate().filter(|(_, s)| s.func) {
         let Some(code) = bytes_at(s.addr, s.size) else {
             continue;
         };
+        if riscv {
+            // A function is reached at its start; a constant object anywhere within it.
+            for a in riscv_refs::refs(s.addr, &code) {
+                let hit = find(a).filter(|&t| !syms[t].func || syms[t].addr == a);
+                if let Some(t) = hit.filter(|&t| t != i && !edges[i].contains(&t)) {
+                    edges[i].push(t);
+                }
+            }
+            continue;
+        }
         let hw = |k: usize| u32::from(u16::from_le_bytes([code[k], code[k + 1]]));
         let mut k = 0;
         while k + 1 < code.len() {
@@ -751,10 +803,10 @@ fn check_target(
     rows: &mut BTreeMap<(String, String, usize), Row>,
 ) -> Result<(), String> {
     let elf = build(triple, profile, target_dir)?;
-    let out = qemu(machine, &elf)?;
+    let out = qemu(triple, machine, &elf)?;
     let (lines, selfcheck) = parse(&out)?;
     let sc = selfcheck.ok_or("no SELF line: the counter self-check did not run")?;
-    let passed = check_counter(&sc)?;
+    let passed = check_counter(triple, &sc)?;
     println!("{short} ({triple} on {machine}): counter self-check passed: {passed}");
     let sizes = kernel_sizes(&std::fs::read(&elf).map_err(|e| e.to_string())?)?;
     let mut failures = Vec::new();
@@ -832,7 +884,7 @@ fn check_target(
         failures.push(format!("{short}: no D lines (the demo shade did not run)"));
     }
     if let Some(m) = functional {
-        let out2 = qemu(m, &elf)?;
+        let out2 = qemu(triple, m, &elf)?;
         let (lines2, _) = parse(&out2)?;
         // The D lines too, without their counts (0 there).
         let shades = |o: &str| -> Vec<String> {
@@ -984,7 +1036,22 @@ fn main() -> ExitCode {
         println!("0 passed, 0 failed, 1 skipped");
         return ExitCode::SUCCESS;
     }
-    println!("qemu_budget: {}", qemu_version());
+    println!("qemu_budget: {}", qemu_version("qemu-system-arm"));
+    // The RISC-V target needs qemu-system-riscv32 (Debian: qemu-system-misc): without it that
+    // target alone is skipped (failed under CI, where .ci/run installs it).
+    let riscv = Command::new("qemu-system-riscv32")
+        .arg("--version")
+        .output()
+        .is_ok();
+    if riscv {
+        println!("qemu_budget: {}", qemu_version("qemu-system-riscv32"));
+    } else if std::env::var_os("CI").is_some() {
+        eprintln!("qemu_budget: FAILED: qemu-system-riscv32 is not installed (CI is set; .ci/run installs qemu-system-misc)");
+        return ExitCode::FAILURE;
+    } else {
+        println!("\n*** qemu_budget: riscv32imc SKIPPED: qemu-system-riscv32 is not installed ***");
+        println!("*** (apt-get install -y qemu-system-misc; .ci/run does, and there this test fails instead) ***\n");
+    }
     let out_dir = root().join("target/qemu-budget");
     let mut refs = HashMap::new();
     for b in backends() {
@@ -1001,6 +1068,10 @@ fn main() -> ExitCode {
     let mut rows = BTreeMap::new();
     let mut failed = Vec::new();
     for (triple, short, profile, machine, functional) in TARGETS {
+        if !riscv && qemu_binary(triple) == "qemu-system-riscv32" {
+            continue;
+        }
+        let start = std::time::Instant::now();
         if let Err(e) = check_target(
             triple,
             short,
@@ -1013,6 +1084,10 @@ fn main() -> ExitCode {
         ) {
             failed.push(format!("{short}: {e}"));
         }
+        println!(
+            "{short}: built, run and checked in {:.1} s",
+            start.elapsed().as_secs_f64()
+        );
     }
     // The table, and counts.csv for `host-sim budget`.
     let mut csv = String::from(
@@ -1023,7 +1098,7 @@ fn main() -> ExitCode {
          code bytes (kernel + everything it reaches), max error vs f64 (relative to max(1, |v|))"
     );
     println!(
-        "{:<4} {:<9} {:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>6}",
+        "{:<7} {:<9} {:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>6}",
         "tgt", "backend", "model", "min", "median", "max", "bytes", "max err", "ident"
     );
     for ((short, backend, mi), row) in &rows {
@@ -1034,7 +1109,7 @@ fn main() -> ExitCode {
         );
         let code = row.code.map(|c| c.to_string()).unwrap_or_default();
         println!(
-            "{short:<4} {backend:<9} {:<24} {mn:>7} {md:>7} {mx:>7} {code:>7} {:>9.2e} {:>3}/{}",
+            "{short:<7} {backend:<9} {:<24} {mn:>7} {md:>7} {mx:>7} {code:>7} {:>9.2e} {:>3}/{}",
             row_name(*mi),
             row.max_err,
             row.bit_identical,
@@ -1056,7 +1131,7 @@ fn main() -> ExitCode {
         println!("\nwrote {}", out_dir.join("counts.csv").display());
     }
     if failed.is_empty() {
-        println!("\nqemu_budget: counter self-check and accuracy checks passed on both targets");
+        println!("\nqemu_budget: counter self-check and accuracy checks passed on every target");
         println!("1 passed, 0 failed");
         ExitCode::SUCCESS
     } else {

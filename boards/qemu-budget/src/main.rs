@@ -60,25 +60,50 @@
 //! The thumbv6m (Cortex-M0) image runs on netduinoplus2 too (ARMv6-M is a subset of ARMv7-M,
 //! and the STM32F405 aliases its flash at 0x0) and is counted there; on `microbit` (a real
 //! Cortex-M0 model, found by its CPUID) it runs the same cases uncounted, as a functional check.
+//!
+//! # RISC-V
+//!
+//! The same cases, backends and lines on `riscv32imc-unknown-none-elf` (ESP32-C3 class: RV32IMC,
+//! no FPU, so f32 is soft-float and `Fixed22` is what such a part runs), on QEMU's `virt`
+//! machine with `-bios none`: what the M0 image runs (every model in f32, `Fast32` and
+//! `Fixed22`, the `Fixed22` demo shade and scene, the f32 alternatives). There the counter is
+//! the `instret` CSR, exact under the same `-icount` ([`counter`] is then `instret.rs`, with the
+//! same interface and self-check: `addi`/`bnez` loops must read exactly 2n), the start-up is
+//! `rv_start.rs`, and the lines go to the machine's UART.
 #![no_std]
 #![no_main]
 
 mod cases;
+#[cfg(target_arch = "arm")]
+mod counter;
+#[cfg(target_arch = "riscv32")]
+#[path = "instret.rs"]
 mod counter;
 mod demo_shade;
 mod points;
+#[cfg(target_arch = "riscv32")]
+mod rv_start;
 mod scene_cost;
 
 use core::fmt::Write;
+#[cfg(target_arch = "arm")]
 use core::hint::black_box;
+#[cfg(target_arch = "arm")]
 use core::ptr::read_volatile;
 
 use arealight::{Fast32, Real};
+#[cfg(target_arch = "arm")]
 use cortex_m_rt::entry;
+#[cfg(target_arch = "arm")]
 use cortex_m_semihosting::debug;
 
 use cases::{Dirs, Lights, Meter, Sample, MODELS, RING};
-use counter::{fail, self_check, Line, Tim2};
+/// The instruction counter of this target: TIM2 (ARM), `instret` (RISC-V).
+#[cfg(target_arch = "riscv32")]
+use counter::Instret as Tim2;
+#[cfg(target_arch = "arm")]
+use counter::Tim2;
+use counter::{fail, self_check, Line};
 
 /// The backends this target runs (each names itself: [`cases::Backend::NAME`]). Adding a
 /// backend is one entry here (and, on the host, one in `host-sim/tests/qemu_budget.rs`).
@@ -92,6 +117,7 @@ macro_rules! for_each_backend {
     };
 }
 
+#[cfg(target_arch = "arm")]
 const CPUID: usize = 0xE000_ED00;
 
 impl Meter for Tim2 {
@@ -103,8 +129,10 @@ impl Meter for Tim2 {
 }
 
 /// No counter (micro:bit): every count is 0.
+#[cfg(target_arch = "arm")]
 struct Uncounted;
 
+#[cfg(target_arch = "arm")]
 impl Meter for Uncounted {
     #[inline(always)]
     fn call<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
@@ -264,9 +292,24 @@ fn run_scene<T: Real, M: Meter>(name: &str, meter: &mut M) {
     }
 }
 
-#[entry]
-fn main() -> ! {
-    let mut line = Line::new();
+/// The RISC-V image's `INFO` line and whether it counts (always: `instret` on `virt`).
+#[cfg(target_arch = "riscv32")]
+fn identify(line: &mut Line) -> bool {
+    let _ = write!(
+        line,
+        "INFO target=riscv32imc-unknown-none-elf misa={:08x} counted=true ring={RING} phong_m={} moment_m={} line_k={}",
+        counter::misa(),
+        cases::PHONG_M,
+        cases::MOMENT_M,
+        cases::LINE_K
+    );
+    line.send();
+    true
+}
+
+/// The ARM image's `INFO` line and whether it counts (not on the micro:bit's Cortex-M0).
+#[cfg(target_arch = "arm")]
+fn identify(line: &mut Line) -> bool {
     // SAFETY: CPUID is a read-only System Control Block register on every Cortex-M.
     let cpuid = unsafe { read_volatile(CPUID as *const u32) };
     let part = (cpuid >> 4) & 0xFFF;
@@ -284,6 +327,13 @@ fn main() -> ! {
         cases::LINE_K
     );
     line.send();
+    counted
+}
+
+#[cfg_attr(target_arch = "arm", entry)]
+fn main() -> ! {
+    let mut line = Line::new();
+    let counted = identify(&mut line);
     if counted {
         let mut t = Tim2::start();
         self_check(&t, &mut line);
@@ -308,7 +358,9 @@ fn main() -> ! {
             #[cfg(not(target_abi = "eabihf"))]
             run_scene::<arealight::Fixed22, _>("fixed", &mut t);
         }
-    } else {
+    }
+    #[cfg(target_arch = "arm")]
+    if !counted {
         let mut m = Uncounted;
         macro_rules! run {
             ($t:ty) => {
@@ -326,9 +378,14 @@ fn main() -> ! {
     }
     let _ = write!(line, "DONE");
     line.send();
-    debug::exit(debug::EXIT_SUCCESS);
-    loop {
-        cortex_m::asm::wfi();
+    #[cfg(target_arch = "riscv32")]
+    counter::exit(true);
+    #[cfg(target_arch = "arm")]
+    {
+        debug::exit(debug::EXIT_SUCCESS);
+        loop {
+            cortex_m::asm::wfi();
+        }
     }
 }
 
