@@ -72,7 +72,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (on_sphere, on_floor) = (Lit::new(&lights, &plastic), Lit::new(&lights, &matte));
 
     // Expose so that the floor under the sphere shows at about 80 %.
-    let under = lights.diffuse(Vec3::new(0.0, 0.0, 0.9), Vec3::new(0.0, 1.0, 0.0));
+    let under = lights.diffuse(Vec3::new(0.0, 0.0, 0.9), arealight::UnitVec3::y_axis());
     let mut opts = DrawOptions::new(Shading::Gouraud);
     opts.exposure = 0.8 / under.r.max(under.g).max(under.b);
     let table = EncodeTable::new::<f32>(Encoding::Srgb);

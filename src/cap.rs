@@ -33,6 +33,7 @@
 //! Beside it, [`CapLight::lambert_hermite_cos`] places the same two segments in `c = cos w`
 //! (slopes `dE/dc = E'(w)/(-sin w)`): no arc cosine, and a smaller error for `sigma <= pi/4`.
 
+use crate::unit::Direction;
 use crate::{Error, Real, Vec3};
 
 /// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma`, `ss = sin sigma`.
@@ -208,8 +209,8 @@ impl<T: Real> CapLight<T> {
     /// f32 3.3e-7, Fast32 6.7e-6, Fixed22 1.4e-6; 326 486 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-cap_lambert -->
     #[inline]
-    pub fn lambert(&self, n: Vec3<T>) -> T {
-        match n.normalize() {
+    pub fn lambert(&self, n: impl Direction<T>) -> T {
+        match n.to_unit() {
             Some(n) => cap_lambert_from_cos(n.dot(self.axis), self.cos_sigma, self.sin_sigma),
             None => T::ZERO,
         }
@@ -236,8 +237,8 @@ impl<T: Real> CapLight<T> {
     ///
     /// Fallback: 0 for a zero or non-finite `n`.
     #[inline]
-    pub fn lambert_hermite_cos(&self, n: Vec3<T>) -> T {
-        match n.normalize() {
+    pub fn lambert_hermite_cos(&self, n: impl Direction<T>) -> T {
+        match n.to_unit() {
             Some(n) => self
                 .hermite_cos
                 .eval(n.dot(self.axis).clamp(-T::ONE, T::ONE)),
@@ -256,7 +257,7 @@ impl<T: Real> CapLight<T> {
     /// (`docs/accuracy.md`).
     /// <!-- END acc-cap_lambert_hermite -->
     #[inline]
-    pub fn lambert_hermite(&self, n: Vec3<T>) -> T {
+    pub fn lambert_hermite(&self, n: impl Direction<T>) -> T {
         match crate::vec3::angle_to(n, self.axis) {
             Some((c, _, w)) => self.hermite.eval(c, w),
             None => T::ZERO,
@@ -333,9 +334,9 @@ impl<T: Real> SphereLight<T> {
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `n`, [`Error::ZeroLength`] for `n`,
     /// [`Error::PointInsideSphere`].
-    pub fn try_lambert(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
+    pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let n = n.try_normalize("n")?;
+        let n = n.try_unit("n")?.into_inner();
         Ok(cap_lambert_from_cos(n.dot(cap.axis), cap.cs, cap.ss))
     }
 
@@ -351,7 +352,7 @@ impl<T: Real> SphereLight<T> {
     /// 8.4e-5; 80 588 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert -->
     #[inline]
-    pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
+    pub fn lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> T {
         self.try_lambert(p, n).unwrap_or(T::ZERO)
     }
 
@@ -359,9 +360,9 @@ impl<T: Real> SphereLight<T> {
     ///
     /// # Errors
     /// As [`SphereLight::try_lambert`].
-    pub fn try_lambert_hermite(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
+    pub fn try_lambert_hermite(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let n = n.try_normalize("n")?;
+        let n = n.try_unit("n")?.into_inner();
         let sigma = cap.ss.atan2(cap.cs);
         let (c, _, w) = crate::vec3::angle_to(n, cap.axis).ok_or(Error::ZeroLength("n"))?;
         Ok(HermiteFillet::new(sigma, cap.cs, cap.ss).eval(c, w))
@@ -378,7 +379,7 @@ impl<T: Real> SphereLight<T> {
     /// (ill-conditioned: 9.1e-6), Fixed22 9.9e-5; 80 216 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert_hermite -->
     #[inline]
-    pub fn lambert_hermite(&self, p: Vec3<T>, n: Vec3<T>) -> T {
+    pub fn lambert_hermite(&self, p: Vec3<T>, n: impl Direction<T>) -> T {
         self.try_lambert_hermite(p, n).unwrap_or(T::ZERO)
     }
 }

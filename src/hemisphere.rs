@@ -13,6 +13,7 @@
 //! `w` is computed as `atan2(|n x axis|, n.axis)`, accurate at both ends of [0, pi], where
 //! `acos(n.axis)` loses half its digits.
 
+use crate::unit::Direction;
 use crate::vec3::angle_to;
 use crate::{Error, Real, Rgb, Vec3};
 
@@ -50,8 +51,8 @@ impl<T: Real> HemisphereLight<T> {
     /// f32 1.6e-7, Fast32 1.6e-7, Fixed22 8.5e-7; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_const -->
     #[inline]
-    pub fn lambert_const(&self, n: Vec3<T>) -> T {
-        match n.normalize() {
+    pub fn lambert_const(&self, n: impl Direction<T>) -> T {
+        match n.to_unit() {
             Some(n) => (T::HALF * (T::ONE + n.dot(self.axis))).clamp01(),
             None => T::ZERO,
         }
@@ -69,7 +70,7 @@ impl<T: Real> HemisphereLight<T> {
     /// f32 1.5e-7, Fast32 3.5e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_cos -->
     #[inline]
-    pub fn lambert_cos(&self, n: Vec3<T>) -> T {
+    pub fn lambert_cos(&self, n: impl Direction<T>) -> T {
         match angle_to(n, self.axis) {
             Some((c, s, w)) => hemi_cos_from_angle(c, s, w),
             None => T::ZERO,
@@ -126,7 +127,7 @@ impl<T: Real> OvercastSky<T> {
     /// f32 1.7e-7, Fast32 2.9e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_overcast -->
     #[inline]
-    pub fn lambert(&self, n: Vec3<T>) -> T {
+    pub fn lambert(&self, n: impl Direction<T>) -> T {
         match angle_to(n, self.sky.axis) {
             Some((c, s, w)) => {
                 let third = T::from_f64(1.0 / 3.0);
@@ -185,8 +186,8 @@ impl<T: Real> SkyGround<T> {
     /// f32 1.3e-7, Fast32 1.3e-7, Fixed22 9.7e-7; 205 878 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_ground -->
     #[inline]
-    pub fn irradiance(&self, n: Vec3<T>) -> Rgb<T> {
-        match n.normalize() {
+    pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
+        match n.to_unit() {
             Some(n) => {
                 let a = (T::HALF * (T::ONE + n.dot(self.up))).clamp01();
                 let b = T::ONE - a;

@@ -11,8 +11,12 @@
 //!   `r = 2 (n.v) n - v` of the view direction `v` (or Picott's peak approximation, for the
 //!   lights that have no Phong integral in the crate: stated per implementation).
 //!
+//! The directions are [`UnitVec3`]s: the renderer normalizes a pixel's normal (and the view
+//! and reflection directions) once, and no light normalizes them again (each model's cost
+//! below is then its cost without the normalization of `n` or `r`; [`crate::unit`]).
+//!
 //! Both return finite values for every input (0 where the light's own model has no value: a
-//! point inside a sphere light, a zero vector) and never panic; each implementation's accuracy
+//! point inside a sphere light) and never panic; each implementation's accuracy
 //! and cost are those of the model it calls, listed on it below.
 //!
 //! Implemented for the crate's lights (each behind its family's feature; the Phong parts of the
@@ -36,16 +40,16 @@
 //! [`Uberlight`](crate::Uberlight) factor, `shaping` feature), references, arrays and slices
 //! (the sum of their lights).
 
-use crate::{PhongLobe, Real, Rgb, Vec3};
+use crate::{PhongLobe, Real, Rgb, UnitVec3, Vec3};
 
 /// A light that can shade a surface point: see the module docs.
 pub trait Illuminant<T: Real> {
     /// Lambertian irradiance at `p` with unit normal `n`, per channel, normalized as the
     /// light's model is (see the module table). Finite; 0 where the model has no value.
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T>;
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T>;
     /// Phong term at `p` for the unit reflection direction `r` and the lobe's exponent.
     /// Finite; 0 where the model has no value.
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T>;
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T>;
 }
 
 #[inline(always)]
@@ -67,12 +71,12 @@ pub(crate) fn mul_rgb<T: Real>(a: Rgb<T>, b: Rgb<T>) -> Rgb<T> {
 impl<T: Real, L: Illuminant<T> + ?Sized> Illuminant<T> for &L {
     /// The referenced light's [`Illuminant::diffuse`].
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         (**self).diffuse(p, n)
     }
     /// The referenced light's [`Illuminant::phong`].
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         (**self).phong(lobe, p, r)
     }
 }
@@ -80,14 +84,14 @@ impl<T: Real, L: Illuminant<T> + ?Sized> Illuminant<T> for &L {
 impl<T: Real, L: Illuminant<T>> Illuminant<T> for [L] {
     /// The sum over the lights (light transport is linear). Cost: the sum of theirs.
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         self.iter()
             .fold(black(), |acc, l| acc.add(l.diffuse(p, n)))
             .finite_or_zero()
     }
     /// The sum over the lights. Cost: the sum of theirs.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         self.iter()
             .fold(black(), |acc, l| acc.add(l.phong(lobe, p, r)))
             .finite_or_zero()
@@ -97,12 +101,12 @@ impl<T: Real, L: Illuminant<T>> Illuminant<T> for [L] {
 impl<T: Real, L: Illuminant<T>, const K: usize> Illuminant<T> for [L; K] {
     /// The sum over the lights, as for slices.
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         self[..].diffuse(p, n)
     }
     /// The sum over the lights, as for slices.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         self[..].phong(lobe, p, r)
     }
 }
@@ -132,12 +136,12 @@ impl<T: Real, L> Tinted<T, L> {
 impl<T: Real, L: Illuminant<T>> Illuminant<T> for Tinted<T, L> {
     /// The light's diffuse term times the colour. Cost: theirs plus 3 multiplications.
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         mul_rgb(self.light.diffuse(p, n), self.colour).finite_or_zero()
     }
     /// The light's Phong term times the colour. Cost: theirs plus 3 multiplications.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         mul_rgb(self.light.phong(lobe, p, r), self.colour).finite_or_zero()
     }
 }
@@ -149,12 +153,12 @@ pub struct Ambient<T>(pub Rgb<T>);
 impl<T: Real> Illuminant<T> for Ambient<T> {
     /// The colour (non-finite channels as 0). Cost: none.
     #[inline]
-    fn diffuse(&self, _p: Vec3<T>, _n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, _p: Vec3<T>, _n: UnitVec3<T>) -> Rgb<T> {
         self.0.finite_or_zero()
     }
     /// 0.
     #[inline]
-    fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: UnitVec3<T>) -> Rgb<T> {
         black()
     }
 }
@@ -185,12 +189,12 @@ impl<T: Real> DirectionalLight<T> {
 impl<T: Real> Illuminant<T> for DirectionalLight<T> {
     /// `max(0, n.l)`: exact; cost 1 dot product.
     #[inline]
-    fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         grey(n.dot(self.to_light).clamp01())
     }
     /// `max(0, r.l)^m`: a few ULPs times `m`; cost 1 dot product and `log2 m` squarings.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         grey(r.dot(self.to_light).clamp01().powu(lobe.exponent()))
     }
 }
@@ -238,7 +242,7 @@ impl<T: Real> Illuminant<T> for PointLight<T> {
     /// `max(0, n.l)` (divided by `d^2` with the inverse square law), `l` the unit direction to
     /// the light: a few ULPs; cost 1 normalization, 1 dot product (1 division). 0 at the light.
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         let Some((l, d)) = (self.position - p).normalize_with_length() else {
             return black();
         };
@@ -252,7 +256,7 @@ impl<T: Real> Illuminant<T> for PointLight<T> {
     /// `max(0, r.l)^m` (no distance law: the lobe is normalized as the area models' are).
     /// Cost 1 normalization, 1 dot product, `log2 m` squarings. 0 at the light.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         match (self.position - p).normalize() {
             Some(l) => grey(r.dot(l).clamp01().powu(lobe.exponent())),
             None => black(),
@@ -268,12 +272,12 @@ mod hemisphere_impls {
     impl<T: Real> Illuminant<T> for HemisphereLight<T> {
         /// [`HemisphereLight::lambert_const`] (the constant-weighted hemisphere).
         #[inline]
-        fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(self.lambert_const(n))
         }
         /// [`HemisphereLight::phong_const`] (`phong` feature; 0 without it).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
                 grey(self.phong_const(lobe, r))
@@ -289,14 +293,14 @@ mod hemisphere_impls {
     impl<T: Real> Illuminant<T> for OvercastSky<T> {
         /// [`OvercastSky::lambert`].
         #[inline]
-        fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(self.lambert(n))
         }
         /// `C/3 phong_hemi_const + 2C/3 phong_hemi_cos` about the zenith: exact for the CIE
         /// overcast radiance, which is that sum of the two hemisphere radiances. Cost: both
         /// hemisphere Phong models (`phong` feature; 0 without it).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
                 let Ok(h) = HemisphereLight::new(self.zenith()) else {
@@ -320,14 +324,14 @@ mod hemisphere_impls {
     impl<T: Real> Illuminant<T> for SkyGround<T> {
         /// [`SkyGround::irradiance`].
         #[inline]
-        fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             self.irradiance(n)
         }
         /// `sky phong_hemi_const(up) + ground phong_hemi_const(-up)`: exact for this radiance
         /// (the two hemispheres tile the sphere). Cost: two hemisphere Phong models (`phong`
         /// feature; 0 without it).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
                 let (Ok(up), Ok(down)) = (
@@ -358,12 +362,12 @@ mod cap_impls {
     impl<T: Real> Illuminant<T> for CapLight<T> {
         /// [`CapLight::lambert`].
         #[inline]
-        fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(self.lambert(n))
         }
         /// [`CapLight::phong`] (`phong` feature; 0 without it).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, _p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
                 grey(CapLight::phong(self, lobe, r))
@@ -379,12 +383,12 @@ mod cap_impls {
     impl<T: Real> Illuminant<T> for SphereLight<T> {
         /// [`SphereLight::lambert`] (0 inside the sphere).
         #[inline]
-        fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(self.lambert(p, n))
         }
         /// [`SphereLight::phong`] (`phong` feature; 0 without it).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
                 grey(SphereLight::phong(self, lobe, p, r))
@@ -406,12 +410,12 @@ mod polygon_impls {
     impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
         /// [`PolygonLight::lambert`].
         #[inline]
-        fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(self.lambert(p, n))
         }
         /// [`PolygonLight::phong`] (`phong` feature; 0 without it).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             #[cfg(feature = "phong")]
             {
                 grey(PolygonLight::phong(self, lobe, p, r))
@@ -435,12 +439,12 @@ mod line_impls {
         /// `I_p k_d = 1` per unit of the segment's parameter, so a short segment approaches a
         /// point light of unit intensity with the inverse square law).
         #[inline]
-        fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(self.lambert(p, n, Decay::InverseSquare))
         }
         /// [`LineLight::phong_peak`]: Picott's peak of the lobe, not its integral.
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             grey(self.phong_peak(lobe, p, r))
         }
     }
@@ -457,10 +461,8 @@ mod parallelogram_impls {
         /// construction, so no polygon is built per sample): accuracy and cost those of
         /// [`crate::PolygonLight::lambert`] for a quad. 0 in the light's plane.
         #[inline]
-        fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
-            let Some(n) = n.normalize() else {
-                return black();
-            };
+        fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
+            let n = n.into_inner();
             if !p.is_finite() {
                 return black();
             }
@@ -481,7 +483,7 @@ mod parallelogram_impls {
         }
         /// [`ParallelogramLight::phong_peak`]: Picott's peak of the lobe, not its integral.
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             grey(self.phong_peak(lobe, p, r))
         }
     }
@@ -497,12 +499,12 @@ mod sh9_impls {
         /// as the normalized models do). May be slightly negative where a measured
         /// environment's projection rings (not clamped, as the model). Cost: 30 multiply-adds.
         #[inline]
-        fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             self.irradiance(n).scale(T::FRAC_1_PI)
         }
         /// 0: the crate has no specular model for SH environments.
         #[inline]
-        fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: UnitVec3<T>) -> Rgb<T> {
             black()
         }
     }
@@ -530,7 +532,7 @@ mod shaping_impls {
         /// The light's diffuse term times the factor (skipped where the factor is 0). Cost:
         /// [`Uberlight::factor`] plus the light's.
         #[inline]
-        fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             let f = self.shape.factor(p);
             if !(f > T::ZERO) {
                 return black();
@@ -539,7 +541,7 @@ mod shaping_impls {
         }
         /// The light's Phong term times the factor (skipped where the factor is 0).
         #[inline]
-        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
             let f = self.shape.factor(p);
             if !(f > T::ZERO) {
                 return black();
@@ -588,7 +590,7 @@ mod moments_impls {
     impl<T: Real, const N: usize> Illuminant<T> for DirectionalLuminaire<T, N> {
         /// [`PolygonLight::directional_luminaire`] / pi, in [0, 1]: accuracy and cost its.
         #[inline]
-        fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+        fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             grey(
                 (self.polygon.directional_luminaire(p, n, self.axis, self.m) * T::FRAC_1_PI)
                     .clamp01(),
@@ -597,7 +599,7 @@ mod moments_impls {
         /// 0: the luminaire's glossy reflection is a property of the surface, see
         /// [`PolygonLight::glossy_reflection`].
         #[inline]
-        fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: Vec3<T>) -> Rgb<T> {
+        fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: UnitVec3<T>) -> Rgb<T> {
             black()
         }
     }

@@ -89,6 +89,7 @@ pub mod sh9;
 #[cfg(feature = "shaping")]
 pub mod shaping;
 pub mod sine_power;
+pub mod unit;
 pub mod vec3;
 #[cfg(any(feature = "raster", feature = "fixed"))]
 mod wide;
@@ -114,6 +115,7 @@ pub use scene::{ObjectBounds, PreparedScene, PushError, Scene, SceneLight};
 pub use sh9::{Environment, Sh9, Sh9Irradiance};
 #[cfg(feature = "shaping")]
 pub use shaping::{DistanceFalloff, LightFrame, Superellipse, Uberlight};
+pub use unit::{Direction, UnitVec3};
 pub use vec3::{Rgb, Vec3};
 
 /// The README's examples, compiled and run as doc tests.

@@ -120,6 +120,7 @@ use crate::lobe::MAX_EXPONENT;
 use crate::polygon::{
     arc_axis_form, cos_power_sums, for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight,
 };
+use crate::unit::Direction;
 use crate::vec3::cos_sin_between;
 use crate::{Error, Real, Vec3};
 
@@ -641,7 +642,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     pub fn try_directional_luminaire(
         &self,
         p: Vec3<T>,
-        n: Vec3<T>,
+        n: impl Direction<T>,
         axis: Vec3<T>,
         m: u32,
     ) -> Result<T, Error> {
@@ -649,7 +650,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
-        let n = n.try_normalize("n")?;
+        let n = n.try_unit("n")?.into_inner();
         let axis = axis.try_normalize("axis")?;
         Ok(self.clipped_moment_sum(p, -axis, n, m) / T::from_u32(m + 2))
     }
@@ -669,7 +670,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// (ill-conditioned: 8.9e-6); 18 881 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-directional_luminaire -->
     #[inline]
-    pub fn directional_luminaire(&self, p: Vec3<T>, n: Vec3<T>, axis: Vec3<T>, m: u32) -> T {
+    pub fn directional_luminaire(
+        &self,
+        p: Vec3<T>,
+        n: impl Direction<T>,
+        axis: Vec3<T>,
+        m: u32,
+    ) -> T {
         self.try_directional_luminaire(p, n, axis, m)
             .unwrap_or(T::ZERO)
     }
@@ -682,16 +689,16 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     pub fn try_glossy_reflection(
         &self,
         p: Vec3<T>,
-        n: Vec3<T>,
-        e: Vec3<T>,
+        n: impl Direction<T>,
+        e: impl Direction<T>,
         m: u32,
     ) -> Result<T, Error> {
         check_m(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
-        let n = n.try_normalize("n")?;
-        let e = e.try_normalize("e")?;
+        let n = n.try_unit("n")?.into_inner();
+        let e = e.try_unit("e")?.into_inner();
         let mr = (n * (T::TWO * n.dot(e)) - e).normalize().unwrap_or(n);
         Ok(self.clipped_moment_sum(p, mr, n, m) * T::FRAC_1_TAU)
     }
@@ -710,7 +717,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// (ill-conditioned: 6.1e-6); 18 886 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-glossy_reflection -->
     #[inline]
-    pub fn glossy_reflection(&self, p: Vec3<T>, n: Vec3<T>, e: Vec3<T>, m: u32) -> T {
+    pub fn glossy_reflection(
+        &self,
+        p: Vec3<T>,
+        n: impl Direction<T>,
+        e: impl Direction<T>,
+        m: u32,
+    ) -> T {
         self.try_glossy_reflection(p, n, e, m).unwrap_or(T::ZERO)
     }
 
@@ -721,16 +734,16 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     pub fn try_glossy_transmission(
         &self,
         p: Vec3<T>,
-        n: Vec3<T>,
-        e: Vec3<T>,
+        n: impl Direction<T>,
+        e: impl Direction<T>,
         m: u32,
     ) -> Result<T, Error> {
         check_m(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
-        let n = n.try_normalize("n")?;
-        let e = e.try_normalize("e")?;
+        let n = n.try_unit("n")?.into_inner();
+        let e = e.try_unit("e")?.into_inner();
         Ok(self.clipped_moment_sum(p, -e, -n, m) * T::FRAC_1_TAU)
     }
 
@@ -746,7 +759,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// (ill-conditioned: 6.4e-6); 18 848 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-glossy_transmission -->
     #[inline]
-    pub fn glossy_transmission(&self, p: Vec3<T>, n: Vec3<T>, e: Vec3<T>, m: u32) -> T {
+    pub fn glossy_transmission(
+        &self,
+        p: Vec3<T>,
+        n: impl Direction<T>,
+        e: impl Direction<T>,
+        m: u32,
+    ) -> T {
         self.try_glossy_transmission(p, n, e, m).unwrap_or(T::ZERO)
     }
 }

@@ -55,7 +55,6 @@
 //! `c^2 + s^2 = 1`; `f = 1 - (r.G)^2`), which cut the m = 255 error three-fold. The README
 //! tabulates the measured errors.
 
-#[cfg(feature = "cap")]
 use crate::cap::{CapLight, SphereLight};
 #[cfg(feature = "hemisphere")]
 use crate::hemisphere::HemisphereLight;
@@ -67,6 +66,8 @@ use crate::polygon::{
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
+#[cfg(feature = "cap")]
+use crate::unit::Direction;
 #[cfg(any(feature = "cap", feature = "hemisphere"))]
 use crate::vec3::cos_sin_between;
 #[cfg(any(feature = "cap", feature = "polygon"))]
@@ -89,11 +90,11 @@ impl<T: Real> HemisphereLight<T> {
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_hemi_const -->
     #[inline]
-    pub fn phong_const(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
-        let Some(r) = r.normalize() else {
+    pub fn phong_const(&self, lobe: &PhongLobe<T>, r: impl Direction<T>) -> T {
+        let Some(r) = r.to_unit() else {
             return T::ZERO;
         };
-        let (c, s) = cos_sin_between(r, self.axis());
+        let (c, s) = cos_sin_between(*r, self.axis());
         let m = lobe.m;
         // x only matters for even m (S starts from S(0, x) = x).
         let w = if m & 1 == 0 { s.atan2(c) } else { T::ZERO };
@@ -118,11 +119,11 @@ impl<T: Real> HemisphereLight<T> {
     /// in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_hemi_cos -->
     #[inline]
-    pub fn phong_cos(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
-        let Some(r) = r.normalize() else {
+    pub fn phong_cos(&self, lobe: &PhongLobe<T>, r: impl Direction<T>) -> T {
+        let Some(r) = r.to_unit() else {
             return T::ZERO;
         };
-        let (c, s) = cos_sin_between(r, self.axis());
+        let (c, s) = cos_sin_between(*r, self.axis());
         let m = lobe.m;
         let k = m + 1;
         let w = if k & 1 == 0 { s.atan2(c) } else { T::ZERO };
@@ -264,12 +265,12 @@ impl<T: Real> CapLight<T> {
     /// 200 854 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_cap -->
     #[inline]
-    pub fn phong(&self, lobe: &PhongLobe<T>, r: Vec3<T>) -> T {
-        let Some(r) = r.normalize() else {
+    pub fn phong(&self, lobe: &PhongLobe<T>, r: impl Direction<T>) -> T {
+        let Some(r) = r.to_unit() else {
             return T::ZERO;
         };
         let (cs, ss) = self.cos_sin_sigma();
-        let (c, s) = cos_sin_between(r, self.axis());
+        let (c, s) = cos_sin_between(*r, self.axis());
         phong_cap_from_angle(lobe.m, c, s, cs, ss)
     }
 }
@@ -281,9 +282,14 @@ impl<T: Real> SphereLight<T> {
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`,
     /// [`Error::PointInsideSphere`].
-    pub fn try_phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
+    pub fn try_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+    ) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let r = r.try_normalize("r")?;
+        let r = r.try_unit("r")?.into_inner();
         let (c, s) = cos_sin_between(r, cap.axis);
         Ok(phong_cap_from_angle(lobe.m, c, s, cap.cs, cap.ss))
     }
@@ -300,7 +306,7 @@ impl<T: Real> SphereLight<T> {
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_sphere -->
     #[inline]
-    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
+    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
         self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
     }
 }
@@ -376,9 +382,14 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`.
-    pub fn try_phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
+    pub fn try_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+    ) -> Result<T, Error> {
         p.check_position("p")?;
-        let r = r.try_normalize("r")?;
+        let r = r.try_unit("r")?.into_inner();
         if self.in_plane(p) {
             return Ok(T::ZERO);
         }
@@ -461,7 +472,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_polygon -->
     #[inline]
-    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
+    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
         self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
     }
 }

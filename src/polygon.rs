@@ -45,6 +45,7 @@
 //! `dist` of an edge or vertex of the polygon (the individual edge terms are then
 //! ill-conditioned although their sum is not); the README gives the measured figures.
 
+use crate::unit::Direction;
 use crate::{Error, Real, Vec3};
 use heapless::Vec;
 
@@ -142,9 +143,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `n`, [`Error::ZeroLength`] for `n`,
     /// [`Error::OutOfRange`] for `p` beyond [`Real::COORDINATE_LIMIT`] (fixed point only).
-    pub fn try_lambert(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
+    pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         p.check_position("p")?;
-        let n = n.try_normalize("n")?;
+        let n = n.try_unit("n")?.into_inner();
         if self.in_plane(p) {
             return Ok(T::ZERO);
         }
@@ -174,7 +175,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// (`docs/accuracy.md`).
     /// <!-- END acc-polygon_lambert -->
     #[inline]
-    pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>) -> T {
+    pub fn lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> T {
         self.try_lambert(p, n).unwrap_or(T::ZERO)
     }
 

@@ -38,7 +38,7 @@
 //! Cost of [`Scene::prepare`]: a few dozen f64 operations per light (no per-sample cost).
 
 use crate::illuminant::{mul_rgb, Ambient, DirectionalLight, Illuminant, PointLight};
-use crate::{PhongLobe, Real, Rgb, Vec3};
+use crate::{PhongLobe, Real, Rgb, UnitVec3, Vec3};
 use heapless::Vec as HVec;
 
 #[cfg(feature = "polygon")]
@@ -366,14 +366,14 @@ impl<T: Real, const L: usize, const N: usize> PreparedScene<'_, T, L, N> {
 impl<T: Real, const L: usize, const N: usize> Illuminant<T> for Scene<T, L, N> {
     /// The sum of every light's diffuse term (with the early exits of the module docs).
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         self.entries
             .iter()
             .fold(Rgb::splat(T::ZERO), |acc, e| acc.add(e.diffuse(p, n)))
     }
     /// The sum of every light's Phong term.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         self.entries
             .iter()
             .fold(Rgb::splat(T::ZERO), |acc, e| acc.add(e.phong(lobe, p, r)))
@@ -384,7 +384,7 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_
     /// The sum of the kept lights' diffuse terms, in push order (so the sum rounds exactly as
     /// the whole scene's, whose other lights contribute exactly 0 here).
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         let e = &self.scene.entries;
         self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
             acc.add(e[i as usize].diffuse(p, n))
@@ -392,7 +392,7 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_
     }
     /// The sum of the kept lights' Phong terms, in push order.
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         let e = &self.scene.entries;
         self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
             acc.add(e[i as usize].phong(lobe, p, r))
@@ -413,7 +413,7 @@ impl<T: Real, const N: usize> Entry<T, N> {
     }
 
     #[inline]
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         let f = self.factor(p);
         if !(f > T::ZERO) {
             return Rgb::splat(T::ZERO);
@@ -448,7 +448,7 @@ impl<T: Real, const N: usize> Entry<T, N> {
     }
 
     #[inline]
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         let f = self.factor(p);
         if !(f > T::ZERO) {
             return Rgb::splat(T::ZERO);

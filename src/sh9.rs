@@ -16,6 +16,7 @@
 //! `z0 = sqrt(pi) (1 - cos a)`, `z1 = sqrt(3 pi)/2 sin^2 a`, `z2 = sqrt(5 pi)/2 (cos a - cos^3 a)`;
 //! rotated to `axis`, `L_lm = sqrt(4 pi/(2l + 1)) z_l Y_lm(axis)`.
 
+use crate::unit::Direction;
 use crate::{Error, Real, Rgb, Vec3};
 
 const SQRT_PI: f64 = 1.772_453_850_905_516;
@@ -283,8 +284,8 @@ impl<T: Real> Sh9Irradiance<T> {
     /// f32 6.8e-7, Fast32 6.8e-7, Fixed22 3.1e-6; 309 210 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sh9_irradiance -->
     #[inline]
-    pub fn irradiance(&self, n: Vec3<T>) -> Rgb<T> {
-        let Some(n) = n.normalize() else {
+    pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
+        let Some(n) = n.to_unit() else {
             return Rgb::splat(T::ZERO);
         };
         let (x, y, z) = (n.x, n.y, n.z);

@@ -247,12 +247,13 @@ pub(crate) fn cos_sin_between<T: Real>(d: Vec3<T>, axis: Vec3<T>) -> (T, T) {
     }
 }
 
-/// `(cos w, sin w, w)` between a per-sample direction `d` (any length) and a unit `axis`, or
-/// `None` when `d` is zero or not finite. Cost: one normalization, a cross product, 2 sqrt, 1 atan2.
+/// `(cos w, sin w, w)` between a per-sample direction `d` (any length, or a
+/// [`UnitVec3`](crate::UnitVec3)) and a unit `axis`, or `None` when `d` is zero or not finite.
+/// Cost: one normalization (none for a `UnitVec3`), a cross product, 2 sqrt, 1 atan2.
 #[inline]
 #[allow(dead_code)] // shared by several model families; unused when none of them is enabled
-pub(crate) fn angle_to<T: Real>(d: Vec3<T>, axis: Vec3<T>) -> Option<(T, T, T)> {
-    let d = d.normalize()?;
-    let (c, s) = cos_sin_between(d, axis);
+pub(crate) fn angle_to<T: Real>(d: impl crate::Direction<T>, axis: Vec3<T>) -> Option<(T, T, T)> {
+    let d = d.to_unit()?;
+    let (c, s) = cos_sin_between(*d, axis);
     Some((c, s, s.atan2(c)))
 }

@@ -689,10 +689,11 @@ fn lit_material_is_diffuse_plus_phong() {
     let lamp = SphereLight::new(v(0.0, 3.0, 1.0), 0.5).unwrap();
     let mat = Material::new(Rgb::new(0.5, 0.25, 1.0), Rgb::new(0.2, 0.4, 0.0), 8).unwrap();
     let (p, n, view) = (v(0.1, 0.0, 0.0), v(0.0, 1.0, 0.0), v(0.0, 0.6, 0.8));
+    let (n, view) = (n.to_unit().unwrap(), view.to_unit().unwrap());
     let c = arealight::raster::Shader::shade(&Lit::new(&lamp, &mat), p, n, view);
     let lobe = PhongLobe::new(8).unwrap();
     let r = arealight::raster::reflect(view, n);
-    assert_eq!(r, v(0.0, 0.6, -0.8));
+    assert_eq!(*r, v(0.0, 0.6, -0.8));
     let (d, s) = (lamp.lambert(p, n), lamp.phong(&lobe, p, r));
     assert!(d > 0.01 && s > 0.0);
     assert_eq!(c, Rgb::new(0.5 * d + 0.2 * s, 0.25 * d + 0.4 * s, d));

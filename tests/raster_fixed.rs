@@ -441,10 +441,10 @@ fn fixed22_prepared_mesh_refuses_vertices_beyond_the_coordinate_limit() {
         Band, Cull, EncodeTable, Encoding, Mesh, PreparedMesh, PreparedVertex, Rgb565, Shader,
         Shading,
     };
-    use arealight::{Error, Rgb};
+    use arealight::{Error, Rgb, UnitVec3};
     struct White;
     impl<T: Real> Shader<T> for White {
-        fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+        fn shade(&self, _p: Vec3<T>, _n: UnitVec3<T>, _v: UnitVec3<T>) -> Rgb<T> {
             Rgb::splat(T::ONE)
         }
     }

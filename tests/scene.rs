@@ -7,12 +7,17 @@ mod common;
 use arealight::{
     DirectionalLight, DistanceFalloff, Fixed22, Illuminant, LightFrame, ObjectBounds, PhongLobe,
     PointLight, PolygonLight, PushError, Real, Rgb, Scene, SceneLight, SphereLight, Superellipse,
-    Uberlight, Vec3,
+    Uberlight, UnitVec3, Vec3,
 };
 use common::*;
 
 fn v3<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
     Vec3::from_f64([x, y, z])
+}
+
+/// A direction as the `Illuminant` trait takes it: normalized once.
+fn u<T: Real>(a: V3) -> UnitVec3<T> {
+    v::<T>(a).to_unit().expect("a nonzero direction")
 }
 
 /// A spot (uberlight) at `origin` pointing along `dir`, its beam cut off beyond `zfar`.
@@ -97,7 +102,7 @@ macro_rules! scene_tests {
             ) {
                 let lobe = PhongLobe::<T>::new(16).unwrap();
                 for &(p, n, r) in cases {
-                    let (p, n, r) = (v::<T>(p), v::<T>(n), v::<T>(r));
+                    let (p, n, r) = (v::<T>(p), u::<T>(n), u::<T>(r));
                     assert_eq!(a.diffuse(p, n).to_f64(), b.diffuse(p, n).to_f64());
                     assert_eq!(a.phong(&lobe, p, r).to_f64(), b.phong(&lobe, p, r).to_f64());
                 }
@@ -119,7 +124,7 @@ macro_rules! scene_tests {
                 // And the kept lights do light the object.
                 let lit = cases
                     .iter()
-                    .any(|&(p, n, _)| prepared.diffuse(v::<T>(p), v::<T>(n)).to_f64()[0] > 0.01);
+                    .any(|&(p, n, _)| prepared.diffuse(v::<T>(p), u::<T>(n)).to_f64()[0] > 0.01);
                 assert!(lit);
             }
 
@@ -182,7 +187,7 @@ macro_rules! scene_tests {
                     .collect();
                 // The matte view equals the whole scene in its diffuse term.
                 for &(p, n, _) in &cases {
-                    let (p, n) = (v::<T>(p), v::<T>(n));
+                    let (p, n) = (v::<T>(p), u::<T>(n));
                     assert_eq!(scene.diffuse(p, n).to_f64(), matte.diffuse(p, n).to_f64());
                 }
                 assert_same(&scene, &glossy, &cases);
@@ -252,7 +257,7 @@ fn culled_lights_contribute_exactly_zero() {
         culled += 1;
         for _ in 0..200 {
             let p = add(o, scale(rng.dir(), radius * rng.unit().cbrt()));
-            let (p, n, r) = (v::<f32>(p), v::<f32>(rng.dir()), v::<f32>(rng.dir()));
+            let (p, n, r) = (v::<f32>(p), u::<f32>(rng.dir()), u::<f32>(rng.dir()));
             assert_eq!(scene.diffuse(p, n).to_f64(), [0.0; 3]);
             assert_eq!(scene.phong(&lobe, p, r).to_f64(), [0.0; 3]);
         }

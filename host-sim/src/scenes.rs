@@ -14,7 +14,7 @@ use arealight::raster::{
 use arealight::{
     Ambient, DirectionalLight, DistanceFalloff, Environment, Illuminant, LightFrame, LineLight,
     OvercastSky, ParallelogramLight, PhongLobe, PointLight, PolygonLight, Real, Rgb, Sh9,
-    SkyGround, SphereLight, Superellipse, Tinted, Uberlight, Vec3,
+    SkyGround, SphereLight, Superellipse, Tinted, Uberlight, UnitVec3, Vec3,
 };
 
 use crate::figure::{self, Panel};
@@ -135,12 +135,12 @@ impl<T: Real> Object<T> {
 pub struct Lights<T>(pub Vec<Box<dyn Illuminant<T>>>);
 
 impl<T: Real> Illuminant<T> for Lights<T> {
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         self.0
             .iter()
             .fold(Rgb::splat(T::ZERO), |a, l| a.add(l.diffuse(p, n)))
     }
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         self.0
             .iter()
             .fold(Rgb::splat(T::ZERO), |a, l| a.add(l.phong(lobe, p, r)))
@@ -246,7 +246,7 @@ fn draw_scene<T: Real, P: PixelFormat>(
                 )?;
             }
             Surface::Custom(f) => {
-                let shade = |p, n, v| f(p, n, v);
+                let shade = |p, n: UnitVec3<T>, v: UnitVec3<T>| f(p, *n, *v);
                 raster::draw(camera, band, &mesh, &o.xf, &shade, &opts)?;
             }
             Surface::Emissive(e) => {
@@ -408,6 +408,9 @@ pub const FIGURE_WHITE: u16 = 400;
 /// `0.8 / (largest channel of the diffuse term at p, n)`: the exposure that shows a reference
 /// surface at 80 % (1 when the light gives nothing there).
 pub fn exposure_at<T: Real>(light: &dyn Illuminant<T>, p: Vec3<T>, n: Vec3<T>) -> T {
+    let Some(n) = n.to_unit() else {
+        return T::ONE;
+    };
     let d = light.diffuse(p, n);
     let m = d.r.max(d.g).max(d.b);
     if m > T::ZERO {

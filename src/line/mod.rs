@@ -124,6 +124,7 @@
 //! parallelograms), 7e-10 at m = 2^16 and 2^20 (the brute force's own `cos^m`). f32 against f64
 //! 5e-7 where well conditioned, Fast32 7.4e-6, for m up to 1000.
 
+use crate::unit::Direction;
 use crate::{Error, Real, Vec3};
 
 mod peak;
@@ -429,9 +430,9 @@ impl<T: Real> LineLight<T> {
     /// [`Error::PointOnSegment`], and [`Error::Overflow`] when the value is too large for `T`
     /// (`p` extremely close to the segment for `k >= 1`, relative to the segment's size, or a
     /// tiny light in absolute units with a large `k`).
-    pub fn try_lambert(&self, p: Vec3<T>, n: Vec3<T>, k: Decay) -> Result<T, Error> {
+    pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>, k: Decay) -> Result<T, Error> {
         let v = self.view(p)?;
-        let n = n.try_normalize("n")?;
+        let n = n.try_unit("n")?.into_inner();
         let (lam0, lam1) = (v.l0.dot(n), v.l1.dot(n));
         if !(lam0 > T::ZERO) && !(lam1 > T::ZERO) {
             return Ok(T::ZERO);
@@ -524,7 +525,7 @@ impl<T: Real> LineLight<T> {
     /// unresolved: 3.0e-1); 7 424 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-line_lambert -->
     #[inline]
-    pub fn lambert(&self, p: Vec3<T>, n: Vec3<T>, k: Decay) -> T {
+    pub fn lambert(&self, p: Vec3<T>, n: impl Direction<T>, k: Decay) -> T {
         self.try_lambert(p, n, k).unwrap_or(T::ZERO)
     }
 }

@@ -3,6 +3,7 @@
 
 use super::{hypot, ln_1p, shrink, unit, LineLight};
 use crate::lobe::PhongLobe;
+use crate::unit::Direction;
 use crate::{Error, Real, Vec3};
 
 impl<T: Real> LineLight<T> {
@@ -11,9 +12,14 @@ impl<T: Real> LineLight<T> {
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`,
     /// [`Error::PointOnSegment`].
-    pub fn try_phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
+    pub fn try_phong_peak(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+    ) -> Result<T, Error> {
         let v = self.view(p)?;
-        let r = r.try_normalize("r")?;
+        let r = r.try_unit("r")?.into_inner();
         let ver = segment_versine(v.l0, v.l1, self.e, v.s0, v.s1, v.g, v.h, r);
         Ok(lobe_power(lobe.exponent(), ver))
     }
@@ -36,7 +42,7 @@ impl<T: Real> LineLight<T> {
     /// unresolved: 6.6e-1); 10 053 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-line_phong_peak -->
     #[inline]
-    pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
+    pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
         self.try_phong_peak(lobe, p, r).unwrap_or(T::ZERO)
     }
 }
@@ -182,11 +188,16 @@ impl<T: Real> ParallelogramLight<T> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`.
-    pub fn try_phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Result<T, Error> {
+    pub fn try_phong_peak(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+    ) -> Result<T, Error> {
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
-        let r = r.try_normalize("r")?;
+        let r = r.try_unit("r")?.into_inner();
         // Corners relative to p (in quarter units if a sum overflows: the peak is scale-free).
         let mut q0 = self.origin - p;
         let (mut eu, mut ev) = (self.eu, self.ev);
@@ -258,7 +269,7 @@ impl<T: Real> ParallelogramLight<T> {
     /// (ill-conditioned: 4.3e-6; near boundary: 6.4e-7); 7 730 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-rect_phong_peak -->
     #[inline]
-    pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> T {
+    pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
         self.try_phong_peak(lobe, p, r).unwrap_or(T::ZERO)
     }
 }

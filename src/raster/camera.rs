@@ -316,13 +316,15 @@ impl<T: Real> Camera<T> {
     }
 
     /// The unit direction from `p` toward the eye (the view direction itself for an
-    /// orthographic camera). Cost: 1 normalization (perspective).
+    /// orthographic camera, and at the eye). Cost: 1 normalization (perspective).
     #[inline]
-    pub fn view_dir(&self, p: Vec3<T>) -> Vec3<T> {
+    pub fn view_dir(&self, p: Vec3<T>) -> UnitVec3<T> {
+        // `forward` is normalized by the constructors.
+        let back = UnitVec3::new_unchecked(-self.forward);
         if self.perspective {
-            (self.eye - p).normalize().unwrap_or(-self.forward)
+            (self.eye - p).to_unit().unwrap_or(back)
         } else {
-            -self.forward
+            back
         }
     }
 

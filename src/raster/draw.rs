@@ -4,6 +4,20 @@
 use super::clip::{clip_polygon, ClipVert, MAX_CLIPPED};
 use super::*;
 
+/// A vertex normal as the renderer stores it (normalized after the transform, or zero where
+/// the transformed normal has no direction, or the mesh has none) as the unit normal the
+/// shader gets: the normal itself, or for a zero normal the view direction (the surface faces
+/// the viewer). Cost: one comparison; no normalization.
+#[inline(always)]
+pub(super) fn unit_or_view<T: Real>(n: Vec3<T>, view: UnitVec3<T>) -> UnitVec3<T> {
+    if n.x == T::ZERO && n.y == T::ZERO && n.z == T::ZERO {
+        view
+    } else {
+        // Nonzero: the result of a normalization (`transform.normal(..).normalize()`).
+        UnitVec3::new_unchecked(n)
+    }
+}
+
 /// Draws `mesh` (through `transform`) with `shader` into `band`: every triangle clipped to the
 /// band's rows, depth-tested if the band has a depth band.
 ///
@@ -101,10 +115,11 @@ where
             }
             for v in cv.iter_mut() {
                 let view = camera.view_dir(v.p);
-                let n = if opts.two_sided && v.n.dot(view) < T::ZERO {
-                    -v.n
+                let n = unit_or_view(v.n, view);
+                let n = if opts.two_sided && n.dot(*view) < T::ZERO {
+                    -n
                 } else {
-                    v.n
+                    n
                 };
                 v.col = shader.shade(v.p, n, view).finite_or_zero();
                 stats.shaded = stats.shaded.wrapping_add(1);
@@ -223,9 +238,9 @@ pub(super) fn raster_triangle<T, P, S>(
                 let p = (pw[0] * l[0] + pw[1] * l[1] + pw[2] * l[2]) * inv;
                 let view = camera.view_dir(p);
                 let n = (nw[0] * l[0] + nw[1] * l[1] + nw[2] * l[2])
-                    .normalize()
+                    .to_unit()
                     .unwrap_or(view);
-                let n = if opts.two_sided && n.dot(view) < T::ZERO {
+                let n = if opts.two_sided && n.dot(*view) < T::ZERO {
                     -n
                 } else {
                     n

@@ -78,7 +78,7 @@
 
 use core::fmt;
 
-use crate::{Error, Real, Rgb, Vec3};
+use crate::{Error, Real, Rgb, UnitVec3, Vec3};
 
 mod camera;
 mod clip;

@@ -368,10 +368,11 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 continue;
             }
             let view = camera.view_dir(v.p);
-            let n = if opts.two_sided && v.n.dot(view) < T::ZERO {
-                -v.n
+            let n = super::draw::unit_or_view(v.n, view);
+            let n = if opts.two_sided && n.dot(*view) < T::ZERO {
+                -n
             } else {
-                v.n
+                n
             };
             let col = shader.shade(v.p, n, view).finite_or_zero();
             v.colour = colour_bits(col, opts.exposure);

@@ -271,9 +271,9 @@ pub(super) fn raster<T, P, S>(
                     let p = (pw[0] * w0 + pw[1] * w1 + pw[2] * w2) * inv;
                     let view = camera.view_dir(p);
                     let n = (nw[0] * w0 + nw[1] * w1 + nw[2] * w2)
-                        .normalize()
+                        .to_unit()
                         .unwrap_or(view);
-                    let n = if opts.two_sided && n.dot(view) < T::ZERO {
+                    let n = if opts.two_sided && n.dot(*view) < T::ZERO {
                         -n
                     } else {
                         n

@@ -8,7 +8,7 @@
 
 use super::RasterError;
 use crate::illuminant::{mul_rgb, Illuminant};
-use crate::{PhongLobe, Real, Rgb, Vec3};
+use crate::{PhongLobe, Real, Rgb, UnitVec3, Vec3};
 
 /// Where the shader runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -27,12 +27,12 @@ pub trait Shader<T: Real> {
     /// The linear colour at world point `p` with unit normal `n` (facing the viewer for
     /// two-sided surfaces), `v` the unit direction from `p` toward the eye. Should be finite;
     /// the renderer maps a non-finite channel to 0.
-    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T>;
+    fn shade(&self, p: Vec3<T>, n: UnitVec3<T>, v: UnitVec3<T>) -> Rgb<T>;
 }
 
-impl<T: Real, F: Fn(Vec3<T>, Vec3<T>, Vec3<T>) -> Rgb<T>> Shader<T> for F {
+impl<T: Real, F: Fn(Vec3<T>, UnitVec3<T>, UnitVec3<T>) -> Rgb<T>> Shader<T> for F {
     #[inline]
-    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
+    fn shade(&self, p: Vec3<T>, n: UnitVec3<T>, v: UnitVec3<T>) -> Rgb<T> {
         self(p, n, v)
     }
 }
@@ -72,10 +72,12 @@ impl<T: Real> Material<T> {
     }
 }
 
-/// The mirror direction `2 (n.v) n - v` of `v` about the unit normal `n`.
+/// The mirror direction `2 (n.v) n - v` of `v` about the unit normal `n`: unit by
+/// construction (the mirror of a unit vector), to the rounding of its 6 multiply-adds.
 #[inline]
-pub fn reflect<T: Real>(v: Vec3<T>, n: Vec3<T>) -> Vec3<T> {
-    n * (T::TWO * n.dot(v)) - v
+pub fn reflect<T: Real>(v: UnitVec3<T>, n: UnitVec3<T>) -> UnitVec3<T> {
+    let (v, n) = (v.into_inner(), n.into_inner());
+    UnitVec3::new_unchecked(n * (T::TWO * n.dot(v)) - v)
 }
 
 /// A [`Material`] lit by an [`Illuminant`]: `diffuse * light.diffuse(p, n) +
@@ -101,7 +103,7 @@ impl<T: Real, L: Illuminant<T> + ?Sized> Shader<T> for Lit<'_, T, L> {
     /// [`Illuminant::diffuse`], one [`Illuminant::phong`] unless the specular colour is
     /// black, a reflection (6 multiply-adds) and 6 multiply-adds.
     #[inline]
-    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
+    fn shade(&self, p: Vec3<T>, n: UnitVec3<T>, v: UnitVec3<T>) -> Rgb<T> {
         let m = self.material;
         let mut c = mul_rgb(m.diffuse, self.light.diffuse(p, n));
         let s = m.specular;

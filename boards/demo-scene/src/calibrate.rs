@@ -37,7 +37,7 @@ use arealight::raster::{
 };
 use arealight::{
     Ambient, CapLight, DirectionalLight, Illuminant, PhongLobe, PointLight, PolygonLight, Real,
-    Rgb, Scene, SceneLight, SphereLight, Vec3,
+    Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3,
 };
 
 use super::{BACKGROUND, HEIGHT, WIDTH};
@@ -112,7 +112,7 @@ impl<T: Real> Default for CalibrationBuffers<T> {
 struct Flat<T>(Rgb<T>);
 
 impl<T: Real> Shader<T> for Flat<T> {
-    fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+    fn shade(&self, _p: Vec3<T>, _n: UnitVec3<T>, _v: UnitVec3<T>) -> Rgb<T> {
         // Opaque, as an emissive object's colour is data (the encoding is not hoisted).
         core::hint::black_box(self.0)
     }
@@ -125,7 +125,7 @@ impl<T: Real> Shader<T> for Flat<T> {
 struct Probe<T>(Rgb<T>);
 
 impl<T: Real> Shader<T> for Probe<T> {
-    fn shade(&self, p: Vec3<T>, n: Vec3<T>, v: Vec3<T>) -> Rgb<T> {
+    fn shade(&self, p: Vec3<T>, n: UnitVec3<T>, v: UnitVec3<T>) -> Rgb<T> {
         core::hint::black_box((p, n, v));
         // Opaque, so that the colour's encoding is not hoisted out of the loop either.
         core::hint::black_box(self.0)
@@ -137,10 +137,10 @@ impl<T: Real> Shader<T> for Probe<T> {
 struct Dark;
 
 impl<T: Real> Illuminant<T> for Dark {
-    fn diffuse(&self, _p: Vec3<T>, _n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, _p: Vec3<T>, _n: UnitVec3<T>) -> Rgb<T> {
         core::hint::black_box(Rgb::splat(T::ZERO))
     }
-    fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, _lobe: &PhongLobe<T>, _p: Vec3<T>, _r: UnitVec3<T>) -> Rgb<T> {
         core::hint::black_box(Rgb::splat(T::ZERO))
     }
 }
@@ -152,19 +152,20 @@ fn v3<T: Real>(x: f64, y: f64, z: f64) -> Vec3<T> {
 /// The shading points: `(p, n, v, r)` for [`POINTS`] directions.
 struct Points<T> {
     p: [Vec3<T>; POINTS],
-    n: [Vec3<T>; POINTS],
-    v: [Vec3<T>; POINTS],
-    r: [Vec3<T>; POINTS],
+    n: [UnitVec3<T>; POINTS],
+    v: [UnitVec3<T>; POINTS],
+    r: [UnitVec3<T>; POINTS],
 }
 
 fn points<T: Real>() -> Points<T> {
     let eye = [0.0, 0.8, 3.3];
     let zero = v3::<T>(0.0, 0.0, 0.0);
+    let z = UnitVec3::z_axis();
     let mut out = Points {
         p: [zero; POINTS],
-        n: [zero; POINTS],
-        v: [zero; POINTS],
-        r: [zero; POINTS],
+        n: [z; POINTS],
+        v: [z; POINTS],
+        r: [z; POINTS],
     };
     let golden = core::f64::consts::PI * (3.0 - 2.236_067_977_499_79);
     for i in 0..POINTS {
@@ -179,9 +180,11 @@ fn points<T: Real>() -> Points<T> {
         let nv = n[0] * v[0] + n[1] * v[1] + n[2] * v[2];
         let r = [0, 1, 2].map(|k| 2.0 * nv * n[k] - v[k]);
         out.p[i] = Vec3::from_f64(p);
-        out.n[i] = Vec3::from_f64(n);
-        out.v[i] = Vec3::from_f64(v);
-        out.r[i] = Vec3::from_f64(r);
+        // Unit vectors, normalized once (as the rasterizer hands them to the shader).
+        let unit = |d: [f64; 3]| Vec3::from_f64(d).to_unit().unwrap_or(z);
+        out.n[i] = unit(n);
+        out.v[i] = unit(v);
+        out.r[i] = unit(r);
     }
     out
 }

@@ -49,7 +49,7 @@ use arealight::raster::{
     Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, Vertex,
     VertexColour,
 };
-use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, Vec3};
+use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3};
 
 /// Display width in pixels.
 pub const WIDTH: u16 = 240;
@@ -191,7 +191,7 @@ pub struct Frame<T> {
 struct Glow<T>(Rgb<T>);
 
 impl<T: Real> arealight::raster::Shader<T> for Glow<T> {
-    fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+    fn shade(&self, _p: Vec3<T>, _n: UnitVec3<T>, _v: UnitVec3<T>) -> Rgb<T> {
         self.0
     }
 }

@@ -13,7 +13,7 @@
 //! sphere's Lambert and Phong terms, the ambient term and the products.
 
 use arealight::raster::{Lit, Material, Shader};
-use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, Vec3};
+use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3};
 
 use super::cases::Meter;
 
@@ -113,8 +113,8 @@ pub fn k_demo_shade<T: Real>(
     scene: &Scene<T, 3, 4>,
     material: &Material<T>,
     p: Vec3<T>,
-    n: Vec3<T>,
-    v: Vec3<T>,
+    n: UnitVec3<T>,
+    v: UnitVec3<T>,
 ) -> Rgb<T> {
     Lit::new(scene, material).shade(p, n, v)
 }
@@ -132,7 +132,9 @@ pub fn run<T: Real, M: Meter>(
         for i in 0..INPUTS {
             let (p, n, v) = point(case, i);
             let conv = |a: [f64; 3]| Vec3::<T>::from_f64(a.map(round));
-            let (p, n, v) = core::hint::black_box((conv(p), conv(n), conv(v)));
+            // The rasterizer hands the shader unit vectors (normalized once per vertex).
+            let unit = |a: [f64; 3]| conv(a).to_unit().unwrap_or(UnitVec3::z_axis());
+            let (p, n, v) = core::hint::black_box((conv(p), unit(n), unit(v)));
             let (s, m) = core::hint::black_box((&scene, &material));
             let (c, count) = meter.call(|| k_demo_shade(s, m, p, n, v));
             out(case, i, c.to_f64(), count);

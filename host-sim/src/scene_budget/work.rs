@@ -9,7 +9,7 @@ use arealight::raster::{
     Band, Cull, DrawOptions, EncodeTable, Lit, Mesh, PreparedMesh, PreparedVertex, RasterError,
     Rgb888, Shader, Shading,
 };
-use arealight::{Illuminant, PhongLobe, Real, Rgb, Vec3};
+use arealight::{Illuminant, PhongLobe, Real, Rgb, UnitVec3, Vec3};
 
 use crate::scenes::{Lights, Scene, Surface};
 
@@ -46,7 +46,7 @@ fn dark<T: Real>(c: Rgb<T>) -> usize {
 }
 
 impl<T: Real> Illuminant<T> for Counting<'_, T> {
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         let mut calls = self.calls.borrow_mut();
         self.lights
             .0
@@ -58,7 +58,7 @@ impl<T: Real> Illuminant<T> for Counting<'_, T> {
                 a.add(d)
             })
     }
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         let mut calls = self.calls.borrow_mut();
         self.lights
             .0
@@ -115,7 +115,7 @@ impl Work {
 struct Glow<T>(Rgb<T>);
 
 impl<T: Real> Shader<T> for Glow<T> {
-    fn shade(&self, _p: Vec3<T>, _n: Vec3<T>, _v: Vec3<T>) -> Rgb<T> {
+    fn shade(&self, _p: Vec3<T>, _n: UnitVec3<T>, _v: UnitVec3<T>) -> Rgb<T> {
         self.0
     }
 }

@@ -81,19 +81,19 @@ fn light_error(l: &LightDef, pos: usize, e: arealight::Error) -> Located {
 struct Hermite<L>(L);
 
 impl<T: Real> Illuminant<T> for Hermite<CapLight<T>> {
-    fn diffuse(&self, _p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, _p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         Rgb::splat(self.0.lambert_hermite(n))
     }
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         Illuminant::phong(&self.0, lobe, p, r)
     }
 }
 
 impl<T: Real> Illuminant<T> for Hermite<SphereLight<T>> {
-    fn diffuse(&self, p: Vec3<T>, n: Vec3<T>) -> Rgb<T> {
+    fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
         Rgb::splat(self.0.lambert_hermite(p, n))
     }
-    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: Vec3<T>) -> Rgb<T> {
+    fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         Illuminant::phong(&self.0, lobe, p, r)
     }
 }

@@ -17,7 +17,7 @@ use arealight::raster::{Affine, Camera, Encoding, Material, Projection, RasterEr
 use arealight::{
     Ambient, CapLight, DirectionalLight, Environment, HemisphereLight, Illuminant, LineLight,
     OvercastSky, ParallelogramLight, PhongLobe, PointLight, PolygonLight, Real, Rgb, SceneLight,
-    Sh9, SkyGround, SphereLight, Tinted, Vec3,
+    Sh9, SkyGround, SphereLight, Tinted, UnitVec3, Vec3,
 };
 use serde::Deserialize;
 use toml::Spanned;

@@ -1,0 +1,148 @@
+//! Unit vectors carried by type: normalize once, use everywhere.
+//!
+//! Every per-sample function of the models takes its directions (the normal `n`, the reflection
+//! direction `r`) as `impl` [`Direction`]: a plain [`Vec3`] of any length, which the function
+//! normalizes (and answers its documented fallback for a zero or non-finite vector), or a
+//! [`UnitVec3`], which it uses as it is. A renderer normalizes the interpolated normal of a pixel
+//! once into a `UnitVec3` and hands it to every light, as nalgebra's `Unit<T>` does for its
+//! vectors; the [`Illuminant`](crate::Illuminant) and [`Shader`](crate::raster::Shader) traits
+//! take `UnitVec3` for that reason.
+//!
+//! A `UnitVec3` can only be made by normalizing ([`UnitVec3::new`], [`Vec3::to_unit`]), from
+//! the coordinate axes, by negating one, or by the crate itself where the result is unit by
+//! construction (the mirror direction of [`reflect`](crate::raster::reflect)). Its length is 1
+//! within the backend's rounding: 1.5 ULP per component for the floats (`tests/normalize.rs`),
+//! a few LSB of 2^-22 for [`Fixed22`](crate::Fixed22); it is always finite.
+//!
+//! Cost: a call with a `UnitVec3` skips the normalization the call makes of a `Vec3`: on the
+//! Cortex-M4F (f32, `VSQRT.F32`) about 25 instructions per direction; on the Cortex-M0 in
+//! `Fixed22` a few hundred (`docs/budget.md`, rows `unit n`).
+
+use crate::{Error, Real, Vec3};
+use core::ops::{Deref, Neg};
+
+/// A direction of unit length (within the backend's rounding), normalized once and carried by
+/// type. Dereferences to its [`Vec3`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UnitVec3<T>(Vec3<T>);
+
+impl<T: Real> UnitVec3<T> {
+    /// The unit vector along `v`, or `None` for a zero or non-finite `v` (see
+    /// [`Vec3::normalize`] for the accuracy and the cost of each backend).
+    #[inline]
+    pub fn new(v: Vec3<T>) -> Option<Self> {
+        v.normalize().map(UnitVec3)
+    }
+
+    /// Like [`UnitVec3::new`], for constructors: `param` names the parameter in the error.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::ZeroLength`], naming `param`.
+    #[inline]
+    pub fn try_new(v: Vec3<T>, param: &'static str) -> Result<Self, Error> {
+        v.try_normalize(param).map(UnitVec3)
+    }
+
+    /// `+x`.
+    #[inline]
+    pub fn x_axis() -> Self {
+        UnitVec3(Vec3::new(T::ONE, T::ZERO, T::ZERO))
+    }
+    /// `+y`.
+    #[inline]
+    pub fn y_axis() -> Self {
+        UnitVec3(Vec3::new(T::ZERO, T::ONE, T::ZERO))
+    }
+    /// `+z`.
+    #[inline]
+    pub fn z_axis() -> Self {
+        UnitVec3(Vec3::new(T::ZERO, T::ZERO, T::ONE))
+    }
+
+    /// The vector.
+    #[inline(always)]
+    pub fn into_inner(self) -> Vec3<T> {
+        self.0
+    }
+
+    /// Wraps a vector the crate has made unit by construction (a normalized vector, the mirror
+    /// of one unit vector about another). Not public: a `UnitVec3` from outside is always
+    /// normalized by the crate.
+    #[inline(always)]
+    pub(crate) fn new_unchecked(v: Vec3<T>) -> Self {
+        UnitVec3(v)
+    }
+}
+
+impl<T> Deref for UnitVec3<T> {
+    type Target = Vec3<T>;
+    #[inline(always)]
+    fn deref(&self) -> &Vec3<T> {
+        &self.0
+    }
+}
+
+impl<T: Real> Neg for UnitVec3<T> {
+    type Output = Self;
+    /// The opposite direction (exact: still unit).
+    #[inline(always)]
+    fn neg(self) -> Self {
+        UnitVec3(-self.0)
+    }
+}
+
+impl<T: Real> From<UnitVec3<T>> for Vec3<T> {
+    #[inline(always)]
+    fn from(u: UnitVec3<T>) -> Vec3<T> {
+        u.0
+    }
+}
+
+impl<T: Real> Vec3<T> {
+    /// The unit vector along `self` as a [`UnitVec3`], or `None` for a zero or non-finite
+    /// vector (as [`Vec3::normalize`]).
+    #[inline]
+    pub fn to_unit(self) -> Option<UnitVec3<T>> {
+        UnitVec3::new(self)
+    }
+}
+
+/// A direction argument: a [`Vec3`] of any length (normalized by the call) or a [`UnitVec3`]
+/// (used as it is). Implemented for exactly these two; per-sample functions are generic over
+/// it, so a call with a `UnitVec3` compiles without the normalization.
+pub trait Direction<T: Real>: Copy {
+    /// The unit direction, or `None` for a zero or non-finite vector (then the caller answers
+    /// its documented fallback).
+    fn to_unit(self) -> Option<UnitVec3<T>>;
+    /// Like [`Direction::to_unit`] with a precise error naming `param`.
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::ZeroLength`] (never for a [`UnitVec3`]).
+    fn try_unit(self, param: &'static str) -> Result<UnitVec3<T>, Error>;
+}
+
+impl<T: Real> Direction<T> for Vec3<T> {
+    /// [`Vec3::normalize`].
+    #[inline(always)]
+    fn to_unit(self) -> Option<UnitVec3<T>> {
+        UnitVec3::new(self)
+    }
+    /// [`UnitVec3::try_new`].
+    #[inline(always)]
+    fn try_unit(self, param: &'static str) -> Result<UnitVec3<T>, Error> {
+        UnitVec3::try_new(self, param)
+    }
+}
+
+impl<T: Real> Direction<T> for UnitVec3<T> {
+    /// Itself: no work.
+    #[inline(always)]
+    fn to_unit(self) -> Option<UnitVec3<T>> {
+        Some(self)
+    }
+    /// Itself: no work.
+    #[inline(always)]
+    fn try_unit(self, _param: &'static str) -> Result<UnitVec3<T>, Error> {
+        Ok(self)
+    }
+}
