@@ -163,8 +163,10 @@ pub fn refs(addr: u64, code: &[u8]) -> Vec<u64> {
                 _ => None,
             }
         };
-        if let Some(t) = target.filter(|&t| t >= 0) {
-            out.push(t as u64);
+        // RV32 addresses are 32-bit: `lui` of an address at or above 2^31 (RAM starts at
+        // 0x8000_0000) is negative as a sign-extended immediate.
+        if let Some(t) = target {
+            out.push((t as u64) & 0xffff_ffff);
         }
     }
     out
