@@ -3,7 +3,8 @@
 //! k = 1, 4, 16, 64 point samples).
 //!
 //! Writes `DIR/budget.csv` (`model,backend,host_ns,m4f_insns,m0_insns,code_bytes,max_abs_err,
-//! rms_err`, empty where a figure does not apply), `DIR/budget.md` (the same as tables, with
+//! rms_err,rv32imc_insns`, empty where a figure does not apply; the RISC-V column last, so the
+//! issue's columns keep their positions), `DIR/budget.md` (the same as tables, with
 //! what each column is), `DIR/budget-table.md` (the deterministic tables alone: instruction
 //! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-host.md`
 //! (the host times, one machine's) and `DIR/budget.png` (host time against max error, log-log,
@@ -12,9 +13,10 @@
 //! - host ns per call: each kernel of `boards/qemu-budget/src/cases.rs` (the firmware's), timed
 //!   over many repetitions per input on the 16 inputs of the QEMU harness; the median over the
 //!   inputs, then the median of 5 runs. This build's figures; run it with `--release`.
-//! - M4F / M0 instructions per call: the median over the harness's inputs, read from
-//!   `target/qemu-budget/counts.csv` (written by `cargo test -p host-sim --test qemu_budget`);
-//!   empty when that file is missing or has no row.
+//! - M4F / M0 / RV32IMC instructions per call: the median over the harness's inputs, read from
+//!   `target/qemu-budget/counts.csv` (written by `cargo test -p host-sim --test qemu_budget`;
+//!   RV32IMC is `riscv32imc-unknown-none-elf`, ESP32-C3 class, on QEMU `virt`); empty when that
+//!   file is missing or has no row.
 //! - code bytes: the kernel and everything it reaches, from the same file (thumbv7em for the
 //!   float backends, thumbv6m for fixed point).
 //! - errors: absolute differences from the library's f64 path (for the alternatives, from the
@@ -43,8 +45,10 @@ mod points;
 
 use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
 
-/// The CSV header (fixed by the issue).
-pub const HEADER: &str = "model,backend,host_ns,m4f_insns,m0_insns,code_bytes,max_abs_err,rms_err";
+/// The CSV header (fixed by the issue), then the RISC-V counts (issue 12), last so that the
+/// issue's columns keep their positions.
+pub const HEADER: &str =
+    "model,backend,host_ns,m4f_insns,m0_insns,code_bytes,max_abs_err,rms_err,rv32imc_insns";
 
 /// Arguments of `host-sim budget`.
 #[derive(Args, Debug)]
@@ -112,6 +116,8 @@ pub struct Row {
     pub m4f: Option<u64>,
     /// Cortex-M0 instructions per call (median), if measured.
     pub m0: Option<u64>,
+    /// RV32IMC (ESP32-C3 class) instructions per call (median), if measured.
+    pub rv32: Option<u64>,
     /// Code bytes, if measured.
     pub code: Option<u64>,
     /// Largest absolute error.
@@ -272,6 +278,7 @@ fn backend_rows<T: Backend>(
             host_ns,
             m4f: None,
             m0: None,
+            rv32: None,
             code: None,
             max_err,
             rms_err,
@@ -323,6 +330,7 @@ fn alternative_rows(dirs: Dirs, reps: u32) -> Result<Vec<Row>, String> {
                 host_ns,
                 m4f: None,
                 m0: None,
+                rv32: None,
                 code: None,
                 max_err,
                 rms_err,
@@ -372,6 +380,7 @@ fn fill_counts(rows: &mut [Row], counts: &Counts) {
         let m0 = counts.get(&key("m0")).copied().unwrap_or((None, None));
         r.m4f = m4f.0;
         r.m0 = m0.0;
+        r.rv32 = counts.get(&key("rv32imc")).and_then(|c| c.0);
         r.code = if r.kind == Kind::Fixed { m0.1 } else { m4f.1 };
     }
 }
@@ -448,7 +457,7 @@ pub fn csv(rows: &[Row]) -> String {
     for r in rows {
         let _ = writeln!(
             s,
-            "{},{},{:.1},{},{},{},{:.3e},{:.3e}",
+            "{},{},{:.1},{},{},{},{:.3e},{:.3e},{}",
             r.model,
             r.backend,
             r.host_ns,
@@ -456,7 +465,8 @@ pub fn csv(rows: &[Row]) -> String {
             opt(r.m0),
             opt(r.code),
             r.max_err,
-            r.rms_err
+            r.rms_err,
+            opt(r.rv32)
         );
     }
     s
@@ -495,9 +505,9 @@ pub fn markdown(rows: &[Row], counts_found: bool) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "| model | backend | M4F insns | M0 insns | code bytes | max abs err | RMS err |"
+        "| model | backend | M4F insns | M0 insns | RV32IMC insns | code bytes | max abs err | RMS err |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
     // The front by the exact M4F counts where the harness ran (host times vary run to run).
     let front = if counts_found {
         pareto_by(rows, |r| r.m4f.map(|n| n as f64))
@@ -508,11 +518,12 @@ pub fn markdown(rows: &[Row], counts_found: bool) -> String {
         let star = if front.contains(&i) { " *" } else { "" };
         let _ = writeln!(
             s,
-            "| `{}`{star} | {} | {} | {} | {} | {:.1e} | {:.1e} |",
+            "| `{}`{star} | {} | {} | {} | {} | {} | {:.1e} | {:.1e} |",
             r.model,
             r.backend,
             opt(r.m4f),
             opt(r.m0),
+            opt(r.rv32),
             opt(r.code),
             r.max_err,
             r.rms_err
@@ -987,6 +998,7 @@ mod tests {
             host_ns: ns,
             m4f: None,
             m0: None,
+            rv32: None,
             code: None,
             max_err: err,
             rms_err: err,
@@ -1046,7 +1058,8 @@ mod tests {
         std::fs::write(
             &p,
             "target,backend,model,insns_min,insns_median,insns_max,code_bytes,max_err,x\n\
-             m4f,f32,cap_lambert,147,153,383,1328,1.7e-8,16\n",
+             m4f,f32,cap_lambert,147,153,383,1328,1.7e-8,16\n\
+             rv32imc,fixed,cap_lambert,522,575,1602,6000,2.0e-4,16\n",
         )
         .unwrap();
         let c = read_counts(&p);
@@ -1054,6 +1067,16 @@ mod tests {
             c.get(&("m4f".into(), "f32".into(), "cap_lambert".into())),
             Some(&(Some(153), Some(1328)))
         );
+        // The RISC-V median goes to its own column; code bytes stay the ARM images'.
+        let mut rows = vec![row("cap_lambert", 1.0, 0.0)];
+        rows[0].backend = "fixed".into();
+        rows[0].kind = Kind::Fixed;
+        fill_counts(&mut rows, &c);
+        assert_eq!(
+            (rows[0].rv32, rows[0].m0, rows[0].code),
+            (Some(575), None, None)
+        );
+        assert!(csv(&rows).lines().nth(1).unwrap().ends_with(",575"));
         assert!(read_counts(&dir.join("missing.csv")).is_empty());
         let _ = std::fs::remove_dir_all(&dir);
     }
