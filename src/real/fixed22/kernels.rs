@@ -341,8 +341,8 @@ pub(super) fn sin_cos_q30(x: i32) -> (i64, i64) {
 
 /// `e^x` in Q22 of a Q22 argument, saturated.
 pub(super) fn exp_bits(x: i32) -> i32 {
-    // e^x < 2^9 needs x < 9 ln 2 = 6.2383 (Q22: 26165279.6).
-    if x > 26_165_279 {
+    // e^x < 2^9 needs x < 9 ln 2 = 6.2383246 (Q22: 26165429.93).
+    if x > 26_165_429 {
         return i32::MAX;
     }
     // e^-17 = 4.1e-8 is below half an LSB.
