@@ -15,9 +15,10 @@
 //! run in the test profile, with overflow checks on: an overflow in a kernel panics here, so
 //! the unary sweeps also show that no input overflows the kernels' integer arithmetic.
 //!
-//! The two grids run with the suite (about 7 s of CPU). The four sweeps over all 2^32 inputs
-//! take minutes of CPU (measured on a 2-core EPYC: sqrt/rsqrt/sqrt_rsqrt 83 s, ln 65 s,
-//! sin/cos 131 s, exp 21 s) and are `#[ignore]`d; CI runs them in a step of their own:
+//! The two grids run with the suite (about 8 s of CPU). The four sweeps over all 2^32 inputs
+//! and grids 8 times as dense take about 6 minutes of CPU (measured on a 2-core EPYC, user
+//! time: sqrt/rsqrt/sqrt_rsqrt 83 s, ln 65 s, sin/cos 131 s, exp 21 s, the grids 60 s) and
+//! are `#[ignore]`d; CI runs them in a step of their own:
 //! `cargo test -p arealight --test fixed_exhaustive -- --ignored --nocapture`.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
@@ -395,14 +396,27 @@ fn div_exact(a: i32, b: i32) -> i32 {
     q.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
 }
 
-/// Number of numerators of the division and atan2 grids.
+/// Numerators and divisors per binade of the division and atan2 grids run with the suite
+/// (about 4.7e7 pairs each); the `--ignored` step's grids have 4 times the numerators and
+/// twice the divisors.
 const NUMERATORS: u32 = 1 << 15;
-/// Values per binade of the divisors (and atan2's `x`).
 const PER_BINADE: u64 = 24;
 
 #[test]
 fn division_on_a_dense_grid() {
-    let (nums, dens) = (stride_values(NUMERATORS), grid_values(PER_BINADE));
+    division_grid(NUMERATORS, PER_BINADE);
+}
+
+#[test]
+#[ignore = "a grid 8 times as dense (a minute of CPU): run with `-- --ignored`"]
+fn division_on_a_denser_grid() {
+    division_grid(4 * NUMERATORS, 2 * PER_BINADE);
+}
+
+/// Division on `numerators x divisors` (see [`stride_values`], [`grid_values`]) and at every
+/// divisor's saturation boundary: exactly the correctly rounded quotient.
+fn division_grid(numerators: u32, per_binade: u64) {
+    let (nums, dens) = (stride_values(numerators), grid_values(per_binade));
     // Every divisor's saturation boundary: |a| around |b| 2^9 (the quotient's 2^31 LSB).
     let mut pairs: Vec<(i32, i32)> = Vec::new();
     for &b in &dens {
@@ -448,7 +462,19 @@ fn division_on_a_dense_grid() {
 
 #[test]
 fn atan2_on_a_dense_grid() {
-    let (ys, xs) = (stride_values(NUMERATORS), grid_values(PER_BINADE));
+    atan2_grid(NUMERATORS, PER_BINADE);
+}
+
+#[test]
+#[ignore = "a grid 8 times as dense (a minute of CPU): run with `-- --ignored`"]
+fn atan2_on_a_denser_grid() {
+    atan2_grid(4 * NUMERATORS, 2 * PER_BINADE);
+}
+
+/// `atan2(y, x)` on `y x x` (see [`stride_values`], [`grid_values`]) and on every pair of
+/// small integers, within 1 LSB, with the quadrant (the sign of `y`) exact.
+fn atan2_grid(numerators: u32, per_binade: u64) {
+    let (ys, xs) = (stride_values(numerators), grid_values(per_binade));
     // And every pair of small integers (every direction at that scale, every quadrant).
     const SMALL: i32 = 512;
     let (nx, ny) = (xs.len() as i64, ys.len() as i64);
