@@ -127,10 +127,18 @@ impl Stat {
     /// Prints the `[sweep]` line and fails on any violation (with the first one's inputs).
     fn finish(&self, name: &str, unit: &str, secs: f64) {
         let at = self.worst_at.1;
+        let measured = if self.cases == 0 {
+            String::new()
+        } else {
+            format!(
+                "max {:.3} {unit} at bits {at:?} over {} cases (bound {}); ",
+                self.worst, self.cases, self.bound
+            )
+        };
         println!(
-            "[sweep] Fixed22 {name}: max {:.3} {unit} at bits {at:?} over {} cases (bound {}); \
-             {} documented exact values; {:.1} s",
-            self.worst, self.cases, self.bound, self.exact, secs
+            "[sweep] Fixed22 {name}: {measured}{} documented exact values checked, {} wrong; \
+             {secs:.1} s",
+            self.exact, self.wrong
         );
         assert!(
             self.fails == 0,
