@@ -14,6 +14,7 @@
 //   frames-compared  target/frames-compared.md        this script, from the two files above
 //   budget           target/budget/budget-table.md    cargo run --release -p host-sim -- budget --out target/budget
 //                                                     (after cargo test -p host-sim --test qemu_budget)
+//   budget-unit      target/budget/budget-unit.md     the same command (the calls with a UnitVec3)
 //   sizes            boards/size-probe/sizes.md       boards/size-probe/measure.sh boards/size-probe/sizes.md
 //   scene-budget     target/scene-budget/demo-rp2040-answer.md
 //   scene-checks     target/scene-budget/checks.md    .ci/run's scene budget step (host-sim budget

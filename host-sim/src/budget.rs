@@ -6,7 +6,8 @@
 //! rms_err,rv32imc_insns`, empty where a figure does not apply; the RISC-V column last, so the
 //! issue's columns keep their positions), `DIR/budget.md` (the same as tables, with
 //! what each column is), `DIR/budget-table.md` (the deterministic tables alone: instruction
-//! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-host.md`
+//! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-unit.md`
+//! (the calls that take a normal, with a `Vec3` and with a `UnitVec3`), `DIR/budget-host.md`
 //! (the host times, one machine's) and `DIR/budget.png` (host time against max error, log-log,
 //! Pareto front highlighted).
 //!
@@ -952,6 +953,10 @@ pub fn run(args: &BudgetArgs) -> Result<Vec<PathBuf>, String> {
         // The deterministic part alone, for the README's block (boards/readme-tables.mjs).
         write("budget-table.md", table.as_bytes())?,
         write("budget-host.md", host_times(&rows).as_bytes())?,
+        write(
+            "budget-unit.md",
+            unit_markdown(&read_counts(&args.counts)).as_bytes(),
+        )?,
         write("budget.png", &png)?,
     ];
     let missed = missed_targets(&rows);
@@ -963,6 +968,37 @@ pub fn run(args: &BudgetArgs) -> Result<Vec<PathBuf>, String> {
         ));
     }
     Ok(paths)
+}
+
+/// The calls that take a normal or a reflection direction, with a `Vec3` of any length (the
+/// call normalizes it) and with a `UnitVec3` (normalized once by the caller), from the QEMU
+/// harness's `<model>` and `<model>/unit` rows (`budget-unit.md`; empty without counts).
+pub fn unit_markdown(counts: &Counts) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "| call | M4F f32: `Vec3` n | M4F f32: `UnitVec3` n | M0 `Fixed22`: `Vec3` n | M0 `Fixed22`: `UnitVec3` n | RV32IMC `Fixed22`: `Vec3` n | RV32IMC `Fixed22`: `UnitVec3` n |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
+    let get = |t: &str, b: &str, m: &str| {
+        opt(counts
+            .get(&(t.to_owned(), b.to_owned(), m.to_owned()))
+            .and_then(|c| c.0))
+    };
+    for (unit, model) in cases::UNIT_CASES {
+        let id = MODELS[model];
+        let _ = writeln!(
+            s,
+            "| `{id}` | {} | {} | {} | {} | {} | {} |",
+            get("m4f", "f32", id),
+            get("m4f", "f32", unit),
+            get("m0", "fixed", id),
+            get("m0", "fixed", unit),
+            get("rv32imc", "fixed", id),
+            get("rv32imc", "fixed", unit),
+        );
+    }
+    s
 }
 
 /// `host-sim budget`.
@@ -1079,6 +1115,29 @@ mod tests {
         assert!(csv(&rows).lines().nth(1).unwrap().ends_with(",575"));
         assert!(read_counts(&dir.join("missing.csv")).is_empty());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn unit_table_pairs_each_call_with_its_unit_row() {
+        let mut c = Counts::new();
+        let mut put = |t: &str, b: &str, m: &str, n: u64| {
+            c.insert((t.into(), b.into(), m.into()), (Some(n), None));
+        };
+        put("m4f", "f32", "hemi_const", 52);
+        put("m4f", "f32", "hemi_const/unit", 20);
+        put("m0", "fixed", "hemi_const", 622);
+        put("m0", "fixed", "hemi_const/unit", 170);
+        put("rv32imc", "fixed", "polygon_lambert/unit", 5600);
+        let t = unit_markdown(&c);
+        assert_eq!(t.lines().count(), 2 + cases::UNIT_CASES.len());
+        assert!(
+            t.contains("| `hemi_const` | 52 | 20 | 622 | 170 |  |  |"),
+            "{t}"
+        );
+        assert!(
+            t.contains("| `polygon_lambert` |  |  |  |  |  | 5600 |"),
+            "{t}"
+        );
     }
 
     #[test]

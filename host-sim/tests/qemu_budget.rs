@@ -29,6 +29,8 @@
 mod process;
 #[path = "support/riscv_refs.rs"]
 mod riscv_refs;
+#[path = "support/unit_rows.rs"]
+mod unit_rows;
 use process::{root, run};
 
 #[allow(dead_code)]
@@ -393,7 +395,7 @@ fn check_no_wrap(short: &str, out: &str, failures: &mut Vec<String>) {
     for l in out.lines() {
         let f: Vec<&str> = l.split_whitespace().collect();
         let fields: &[usize] = match f.first().copied() {
-            Some("V") | Some("D") => &[4],
+            Some("V") | Some("D") | Some("U") => &[4],
             Some("A") => &[5],
             Some("S") => &[3],
             Some("Q") => &[5, 6],
@@ -879,6 +881,7 @@ fn check_target(
     check_points(short, &lines, &sizes, rows, &mut failures);
     check_scene(short, &out, &mut failures);
     check_demo_shade(short, &out, rows, &mut failures);
+    unit_rows::check(short, &out, rows, &mut failures);
     check_sqrt(short, &out, &mut failures);
     if !out.lines().any(|l| l.starts_with("D ")) {
         failures.push(format!("{short}: no D lines (the demo shade did not run)"));
@@ -1000,6 +1003,7 @@ fn row_name(index: usize) -> &'static str {
         .copied()
         .or_else(|| points::ALTERNATIVES.get(index - MODELS.len()).map(|a| a.0))
         .or_else(|| demo_shade::CASES.get(index - DEMO_ROW).map(|c| c.0))
+        .or_else(|| unit_rows::row_name(index))
         .unwrap_or("?")
 }
 

@@ -14,7 +14,7 @@
 use arealight::{
     lune_normalization, CapLight, Decay, DistanceFalloff, Environment, HemisphereLight, LineLight,
     OvercastSky, ParallelogramLight, PhongLobe, PolygonLight, Real, Rgb, Sh9, Sh9Irradiance,
-    SkyGround, SphereLight, Superellipse, Vec3,
+    SkyGround, SphereLight, Superellipse, UnitVec3, Vec3,
 };
 
 /// The Phong exponent of every Phong-type case.
@@ -484,6 +484,102 @@ pub fn run_model<T: Backend, M: Meter>(
             const ARM: usize = 26;
             go!(k_distance_falloff)
         }
+        _ => {}
+    }
+}
+
+/// The cases whose per-sample direction is a normal or a reflection direction, counted a
+/// second time with that direction as a [`UnitVec3`] (normalized once, before the count, as a
+/// renderer hands it to every light): `(row name, index into MODELS)`. The answers are the
+/// same bits as the `V` lines' (the call normalizes a `Vec3` and then runs the same code).
+pub const UNIT_CASES: [(&str, usize); 9] = [
+    ("hemi_const/unit", 0),
+    ("sky_ground/unit", 3),
+    ("cap_lambert/unit", 4),
+    ("cap_lambert_hermite/unit", 5),
+    ("sphere_lambert/unit", 6),
+    ("polygon_lambert/unit", 8),
+    ("phong_cap/unit", 12),
+    ("phong_polygon/unit", 14),
+    ("sh9_irradiance/unit", 23),
+];
+
+macro_rules! unit_kernel {
+    ($name:ident, |$l:ident, $d:ident| -> $out:ty $body:block) => {
+        #[doc = concat!("One call of `", stringify!($name), "` with a unit direction.")]
+        #[inline(never)]
+        pub fn $name<T: Real>($l: &Lights<T>, $d: UnitVec3<T>) -> $out $body
+    };
+}
+
+unit_kernel!(u_hemi_const, |l, d| -> T { l.hemi.lambert_const(d) });
+unit_kernel!(u_sky_ground, |l, d| -> Rgb<T> {
+    l.sky_ground.irradiance(d)
+});
+unit_kernel!(u_cap_lambert, |l, d| -> T { l.cap.lambert(d) });
+unit_kernel!(u_cap_lambert_hermite, |l, d| -> T {
+    l.cap.lambert_hermite(d)
+});
+unit_kernel!(u_sphere_lambert, |l, d| -> T { l.sphere.lambert(l.p, d) });
+unit_kernel!(u_polygon_lambert, |l, d| -> T { l.quad.lambert(l.p, d) });
+unit_kernel!(u_phong_cap, |l, d| -> T { l.cap.phong(&l.lobe, d) });
+unit_kernel!(u_phong_polygon, |l, d| -> T {
+    l.quad.phong(&l.lobe, l.p, d)
+});
+unit_kernel!(u_sh9_irradiance, |l, d| -> Rgb<T> { l.sh9.irradiance(d) });
+
+/// Runs unit case `case` (an index into [`UNIT_CASES`]) over every direction of `dirs` as
+/// [`run_model`] does, the direction normalized into a [`UnitVec3`] before the count; the
+/// samples carry the model's index.
+pub fn run_unit<T: Backend, M: Meter>(
+    lights: &Lights<T>,
+    case: usize,
+    dirs: Dirs,
+    round: fn(f64) -> f64,
+    meter: &mut M,
+    out: &mut impl FnMut(Sample),
+) {
+    let Some(&(_, model)) = UNIT_CASES.get(case) else {
+        return;
+    };
+    macro_rules! go {
+        ($k:ident) => {
+            go!($k, |r: T| ([r.to_f64(), 0.0, 0.0], 1))
+        };
+        ($k:ident, rgb) => {
+            go!($k, |r: Rgb<T>| (r.to_f64(), 3))
+        };
+        ($k:ident, $conv:expr) => {
+            for i in 0..dirs.count {
+                let d = input::<T>(model, (dirs.get)(i), round);
+                // The ring's directions are nonzero: every one has a unit vector.
+                let Some(u) = d.to_unit() else {
+                    continue;
+                };
+                let u = core::hint::black_box(u);
+                let l = core::hint::black_box(lights);
+                let (r, count) = meter.call(|| $k(l, u));
+                let (value, channels) = ($conv)(r);
+                out(Sample {
+                    model,
+                    input: i,
+                    value,
+                    channels,
+                    count,
+                });
+            }
+        };
+    }
+    match case {
+        0 => go!(u_hemi_const),
+        1 => go!(u_sky_ground, rgb),
+        2 => go!(u_cap_lambert),
+        3 => go!(u_cap_lambert_hermite),
+        4 => go!(u_sphere_lambert),
+        5 => go!(u_polygon_lambert),
+        6 => go!(u_phong_cap),
+        7 => go!(u_phong_polygon),
+        8 => go!(u_sh9_irradiance, rgb),
         _ => {}
     }
 }

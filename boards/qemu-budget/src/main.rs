@@ -7,6 +7,14 @@
 //! V <backend> <model> <input> <instructions> <value bits as hex, 1 or 3 channels>
 //! ```
 //!
+//! then the cases of [`cases::UNIT_CASES`] (the calls that take a normal or a reflection
+//! direction) with that direction as a `UnitVec3`, normalized before the count (f32 and
+//! f32-fast on the M4F, `Fixed22` on the M0 and RISC-V),
+//!
+//! ```text
+//! U <backend> <model> <input> <instructions> <value bits as hex, 1 or 3 channels>
+//! ```
+//!
 //! then, for the alternatives of [`points`] (point lights, k-sample area lights; f32 only),
 //!
 //! ```text
@@ -86,7 +94,6 @@ mod rv_start;
 mod scene_cost;
 
 use core::fmt::Write;
-#[cfg(target_arch = "arm")]
 use core::hint::black_box;
 #[cfg(target_arch = "arm")]
 use core::ptr::read_volatile;
@@ -128,21 +135,29 @@ impl Meter for Tim2 {
     }
 }
 
-/// No counter (micro:bit): every count is 0.
-#[cfg(target_arch = "arm")]
-struct Uncounted;
+/// The counter where it counts, none on the micro:bit (every count 0). One type for both runs,
+/// so that every case is compiled once, not once per meter: the M0 image must fit the
+/// micro:bit's 256 KB. Only the kernel call lies between the two counter reads either way.
+struct Meters(Option<Tim2>);
 
-#[cfg(target_arch = "arm")]
-impl Meter for Uncounted {
+impl Meter for Meters {
     #[inline(always)]
     fn call<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
-        (black_box(f()), 0)
+        match &mut self.0 {
+            Some(t) => t.call(f),
+            None => (black_box(f()), 0),
+        }
     }
 }
 
 fn emit(line: &mut Line, backend: &str, s: &Sample) {
+    emit_as(line, "V", backend, s)
+}
+
+/// A `V` line, or with `kind` `U` the same for a call with a unit direction.
+fn emit_as(line: &mut Line, kind: &str, backend: &str, s: &Sample) {
     let model = MODELS.get(s.model).copied().unwrap_or("?");
-    let _ = write!(line, "V {backend} {model} {} {}", s.input, s.count);
+    let _ = write!(line, "{kind} {backend} {model} {} {}", s.input, s.count);
     for v in &s.value[..s.channels] {
         let _ = write!(line, " {:016x}", v.to_bits());
     }
@@ -209,6 +224,21 @@ fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
         cases::run_model(&lights, model, dirs, |x| x, meter, &mut |s| {
             emit(&mut out, name, &s)
         });
+    }
+    // The same calls with a unit direction (`U` lines): the floats where there is an FPU,
+    // fixed point on the others (a constant per backend and target: nothing is linked
+    // elsewhere).
+    if cfg!(target_abi = "eabihf") || T::FIXED {
+        for case in 0..cases::UNIT_CASES.len() {
+            let id = MODELS[cases::UNIT_CASES[case].1];
+            if !cases::supports(name, id) || !selected(id) {
+                continue;
+            }
+            let mut out = Line::new();
+            cases::run_unit(&lights, case, dirs, |x| x, meter, &mut |s| {
+                emit_as(&mut out, "U", name, &s)
+            });
+        }
     }
 }
 
@@ -334,46 +364,35 @@ fn identify(line: &mut Line) -> bool {
 fn main() -> ! {
     let mut line = Line::new();
     let counted = identify(&mut line);
-    if counted {
-        let mut t = Tim2::start();
+    // The counter where it counts (after its self-check), none on the micro:bit.
+    let mut m = Meters(if counted {
+        let t = Tim2::start();
         self_check(&t, &mut line);
-        macro_rules! run {
-            ($t:ty) => {
-                run_backend::<$t, _>(&mut t, &mut line)
-            };
-        }
-        for_each_backend!(run);
-        // One backend per core (the M0 image must fit the micro:bit's 256 KB): the float path
-        // on the M4F, fixed point on the M0, as the boards run them.
-        #[cfg(target_abi = "eabihf")]
-        run_demo_shade::<f32, _>("f32", &mut t);
-        #[cfg(not(target_abi = "eabihf"))]
-        run_demo_shade::<arealight::Fixed22, _>("fixed", &mut t);
-        if ONLY.is_none() {
-            run_points::<f32, _>("f32", &mut t);
-            #[cfg(target_abi = "eabihf")]
-            run_sqrt_sweep(&mut t);
-            #[cfg(target_abi = "eabihf")]
-            run_scene::<f32, _>("f32", &mut t);
-            #[cfg(not(target_abi = "eabihf"))]
-            run_scene::<arealight::Fixed22, _>("fixed", &mut t);
-        }
+        Some(t)
+    } else {
+        None
+    });
+    macro_rules! run {
+        ($t:ty) => {
+            run_backend::<$t, _>(&mut m, &mut line)
+        };
     }
-    #[cfg(target_arch = "arm")]
-    if !counted {
-        let mut m = Uncounted;
-        macro_rules! run {
-            ($t:ty) => {
-                run_backend::<$t, _>(&mut m, &mut line)
-            };
-        }
-        for_each_backend!(run);
-        #[cfg(target_abi = "eabihf")]
-        run_demo_shade::<f32, _>("f32", &mut m);
-        #[cfg(not(target_abi = "eabihf"))]
-        run_demo_shade::<arealight::Fixed22, _>("fixed", &mut m);
-        if ONLY.is_none() {
-            run_points::<f32, _>("f32", &mut m);
+    for_each_backend!(run);
+    // One backend per core (the M0 image must fit the micro:bit's 256 KB): the float path
+    // on the M4F, fixed point on the M0, as the boards run them.
+    #[cfg(target_abi = "eabihf")]
+    run_demo_shade::<f32, _>("f32", &mut m);
+    #[cfg(not(target_abi = "eabihf"))]
+    run_demo_shade::<arealight::Fixed22, _>("fixed", &mut m);
+    if ONLY.is_none() {
+        run_points::<f32, _>("f32", &mut m);
+        if counted {
+            #[cfg(target_abi = "eabihf")]
+            run_sqrt_sweep(&mut m);
+            #[cfg(target_abi = "eabihf")]
+            run_scene::<f32, _>("f32", &mut m);
+            #[cfg(not(target_abi = "eabihf"))]
+            run_scene::<arealight::Fixed22, _>("fixed", &mut m);
         }
     }
     let _ = write!(line, "DONE");
