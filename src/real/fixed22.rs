@@ -32,10 +32,10 @@
 //! | function | method | bound (tested) | measured |
 //! |---|---|---|---|
 //! | `a * b` | four 16 x 16-bit products combined in 32-bit integers (`H 2^10 + w/2^6`), one range test of the high part; 64-bit arithmetic only when saturating | exact floor, saturated (`tests/fixed_kernels.rs`) | ~27 instructions (was ~40 with a 64-bit combine and clamp) |
-//! | `a / b` | `u32` division for the integer part, 22 restoring-division steps for the fraction and one for rounding; no 64-bit division | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = +-MAX, `0 / 0` = 0 | 0.500 LSB |
+//! | `a / b` | `u32` division for the integer part, 22 restoring-division steps for the fraction and one for rounding; no 64-bit division | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = MAX for `x > 0`, MIN (-512) for `x < 0`, `0 / 0` = 0 | 0.500 LSB |
 //! | `div_u32(n)`, `n <= 256` | the raw bits times `ceil(2^32/o)` (`n = o 2^k`, a 127-entry table) and one remainder correction | bit-identical to `/ from_u32(n)` | ~35 instead of ~290 instructions |
 //! | `mul_u32(n)`, `n < 512` | two 16 x 9-bit products | bit-identical to `* from_u32(n)` | |
-//! | `sqrt`, `rsqrt`, `sqrt_rsqrt` | one core: `x = m 4^j`, `m` in [1, 4); a quadratic start per eighth of `[1, 4)` (24-entry table, relative 2^-15.8), one Newton step for `1/sqrt m` in `u32` (relative 2^-29.5); `sqrt = m (1/sqrt m)`; all rounded to nearest | sqrt 1 LSB; rsqrt 1 LSB + 2^-28 relative; 0 for `x <= 0`, rsqrt MAX below `2^-18` | sqrt 0.679 LSB, rsqrt 0.553 |
+//! | `sqrt`, `rsqrt`, `sqrt_rsqrt` | one core: `x = m 4^j`, `m` in [1, 4); a quadratic start per eighth of `[1, 4)` (24-entry table, relative 2^-15.8), one Newton step for `1/sqrt m` in `u32` (relative 2^-29.5); `sqrt = m (1/sqrt m)`; all rounded to nearest | sqrt 1 LSB; rsqrt 1 LSB + 2^-28 relative; 0 for `x <= 0`, rsqrt MAX below `2^-18` | sqrt 0.707 LSB (every input; 0.679 on the random ones), rsqrt 0.553 |
 //! | `atan2` | octant reduction, then `pi/4 + atan((n - d)/(n + d))` above `tan(pi/8)`; the ratio `n (1/sqrt d)^2` from the square-root core; odd polynomial of degree 9 for `atan t`, `|t| <= tan(pi/8)`, in Q30 (kernel error 6.8e-9) | 1 LSB; `atan2(0, 0) = 0` | 0.542 LSB |
 //! | `sin`, `cos` | reduction by `pi/2` with a Q38 `pi/2`, minimax polynomials of degree 7 (sin) and 8 (cos) in Q30 on `[-pi/4, pi/4]` | 1 LSB for `|x| <= 64`; within `[-1, 1]` (+2 LSB) everywhere | 0.522 LSB |
 //! | `exp` | `x = k ln 2 + r`, degree-6 minimax polynomial for `e^r` in Q30, shift by `k` | `(1 + e^x)` LSB; MAX above `9 ln 2`, 0 below -17 | 0.500 |
@@ -63,7 +63,7 @@
 //! make) and panics on division by zero; its `sqrt` is a bit-by-bit integer square root of the
 //! 54-bit `x 2^22`, measured at about 390 instructions per call on the M0 (the demo shade's
 //! profile) and rounded down (1.000 LSB), where the table-seeded Newton step above takes about
-//! 130 and rounds (0.679 LSB): it measurably beats the crate, about 3x, and is more accurate.
+//! 130 and rounds (0.707 LSB at worst over every input): it measurably beats the crate, about 3x, and is more accurate.
 //! The `cordic` crate iterates once per result bit over 64-bit (`U0F64`) angle tables, ~30
 //! rounds of 64-bit shifts and adds on a 32-bit core per call, where the polynomials above
 //! reach 1 LSB with 5 to 9 multiplies. The polynomial coefficients are minimax fits (Lawson's
