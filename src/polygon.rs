@@ -462,19 +462,29 @@ where
     let Some(start) = verts.iter().position(|&v| (v - p).dot(k) >= T::ZERO) else {
         return false;
     };
-    let mut u0 = verts[start] - p;
+    // The ring from `start` round to `start` again: `v0` the edge's first vertex, `v1` its
+    // second, the index stepped with a wrap (no division: a library call on the M0; `get`, so
+    // no bounds check can panic).
+    let Some(&first) = verts.get(start) else {
+        return false;
+    };
+    let (mut v0, mut i1) = (first, start);
+    let mut u0 = v0 - p;
     let mut d0 = u0.dot(k);
     // The start of the current clipped edge (a vertex or a crossing up).
     let mut a0 = u0;
     let mut below0 = false;
     let mut exit: Option<Vec3<T>> = None;
-    for step in 1..=nv {
-        let i0 = (start + step - 1) % nv;
-        let i1 = (start + step) % nv;
-        let u1 = verts[i1] - p;
+    for _ in 0..nv {
+        i1 = if i1 + 1 == nv { 0 } else { i1 + 1 };
+        let Some(&v1) = verts.get(i1) else {
+            break;
+        };
+        let u1 = v1 - p;
         let d1 = u1.dot(k);
         let below1 = d1 < T::ZERO;
-        let edge = verts[i1] - verts[i0];
+        let edge = v1 - v0;
+        v0 = v1;
         match (below0, below1) {
             (false, false) => {
                 // Here a0 is the vertex u0, so d is the polygon's own edge.
