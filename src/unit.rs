@@ -70,6 +70,7 @@ impl<T: Real> UnitVec3<T> {
     /// of one unit vector about another). Not public: a `UnitVec3` from outside is always
     /// normalized by the crate.
     #[inline(always)]
+    #[cfg_attr(not(feature = "raster"), allow(dead_code))] // the rasterizer's (reflect, view)
     pub(crate) fn new_unchecked(v: Vec3<T>) -> Self {
         UnitVec3(v)
     }
