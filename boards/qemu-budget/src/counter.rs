@@ -102,39 +102,10 @@ impl Tim2 {
         t.empty = t.raw(|| ()).1;
         t
     }
-
-    /// The instructions of a measured region whose raw TIM2 difference is `raw`: `raw` less
-    /// [`Tim2::empty`]. A region reads at least the empty region's count (it holds the same
-    /// loads), so `raw < empty` means the counter is not counting instructions: that stops the
-    /// run with a `FAIL` line instead of wrapping to a count near 2^32.
-    #[inline]
-    pub fn net(&self, raw: u32) -> u32 {
-        match raw.checked_sub(self.empty) {
-            Some(n) => n,
-            None => fail(
-                &mut Line::new(),
-                format_args!(
-                    "a measured region read {raw} on TIM2, fewer than the empty region's {}: \
-                     the counter does not count instructions",
-                    self.empty
-                ),
-            ),
-        }
-    }
-
-    /// The raw TIM2 difference around `f`.
-    #[inline(always)]
-    pub fn raw<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
-        compiler_fence(SeqCst);
-        let t0 = cnt();
-        compiler_fence(SeqCst);
-        let r = black_box(f());
-        compiler_fence(SeqCst);
-        let t1 = cnt();
-        compiler_fence(SeqCst);
-        (r, t1.wrapping_sub(t0))
-    }
 }
+
+include!("region.rs");
+measured_region!(Tim2, "TIM2");
 
 /// TIM2 around `n` iterations of `subs`/`bne` (2n instructions), all in assembly so that the
 /// compiler adds nothing: `ldr` (count), the loop, `ldr` (count). `n` = 0 times the two loads

@@ -114,38 +114,10 @@ impl Instret {
         t.empty = t.raw(|| ()).1;
         t
     }
-
-    /// The instructions of a measured region whose raw `instret` difference is `raw`: `raw`
-    /// less [`Instret::empty`]; `raw < empty` (the counter does not count instructions)
-    /// stops the run with a `FAIL` line instead of wrapping.
-    #[inline]
-    pub fn net(&self, raw: u32) -> u32 {
-        match raw.checked_sub(self.empty) {
-            Some(n) => n,
-            None => fail(
-                &mut Line::new(),
-                format_args!(
-                    "a measured region read {raw} on instret, fewer than the empty region's {}: \
-                     the counter does not count instructions",
-                    self.empty
-                ),
-            ),
-        }
-    }
-
-    /// The raw `instret` difference around `f`.
-    #[inline(always)]
-    pub fn raw<R>(&mut self, f: impl Fn() -> R) -> (R, u32) {
-        compiler_fence(SeqCst);
-        let t0 = cnt();
-        compiler_fence(SeqCst);
-        let r = black_box(f());
-        compiler_fence(SeqCst);
-        let t1 = cnt();
-        compiler_fence(SeqCst);
-        (r, t1.wrapping_sub(t0))
-    }
 }
+
+include!("region.rs");
+measured_region!(Instret, "instret");
 
 /// `instret` around `n` iterations of `addi`/`bnez` (2n instructions), all in assembly so
 /// that the compiler adds nothing: `csrr`, the loop, `csrr`. `n` = 0 times the two reads alone.
