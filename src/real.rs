@@ -5,7 +5,7 @@
 //! | type | what it is | sqrt / atan2 / sin / cos |
 //! |---|---|---|
 //! | `f64` | the reference | `libm` (correctly rounded sqrt, atan2 within 1 ULP) |
-//! | `f32` | the firmware float path | `libm` (`sinf`, ...); `sqrt` is `VSQRT.F32` on FPU targets (`eabihf`), `libm::sqrtf` elsewhere: see [`hw`]; `atan2` is the crate's degree-17 polynomial (1.65 ULP, 63 against libm's 68 to 97 M4F instructions a call) except on soft-float targets, which keep `libm::atan2f` (`src/real/f32_math.rs`) |
+//! | `f32` | the firmware float path | `libm` (`sinf`, ...); `sqrt` is `VSQRT.F32` on FPU targets (`eabihf`), `libm::sqrtf` elsewhere: see [`hw`]; `atan2` is the crate's degree-17 polynomial (1.65 ULP, 63 against libm's 68 to 97 M4F instructions a call) except on soft-float targets, which keep `libm::atan2f` (`src/real/f32_math.rs`); `arc_ratio` (`theta/sin(theta)` for the polygon edge terms) a degree-9 polynomial on the same targets (`src/real/arc_ratio.rs`) |
 //! | [`Fast32`] | f32 with the crate's own cheap approximations | see [`fast32`] |
 //!
 //! The trait is sealed: the crate's models rely on the error bounds of each backend, which are
@@ -18,6 +18,7 @@
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
+mod arc_ratio;
 mod f32_math;
 pub mod fast32;
 pub use fast32::Fast32;
@@ -190,6 +191,14 @@ pub trait Real:
         } else {
             Self::ZERO
         }
+    }
+    /// `acos(c)/sqrt(1 - c^2)` (the arc ratio `theta/sin(theta)` of the angle whose cosine is
+    /// `c = self`) for `c` in [0, 1], where the backend has one cheaper than an arc tangent:
+    /// `f32`'s degree-9 polynomial (at most 1.58 ULP; `src/real/arc_ratio.rs`). `None` for the
+    /// others (the default), whose polygon edge terms keep the arc-tangent form.
+    #[inline(always)]
+    fn arc_ratio(self) -> Option<Self> {
+        None
     }
     /// Arc cosine in [0, pi] of `self` clamped to [-1, 1], computed as
     /// `atan2(sqrt((1 - x)(1 + x)), x)` (accurate near +-1, where `acos` loses digits).
@@ -471,7 +480,7 @@ compile_error!(
 );
 
 macro_rules! impl_real_float {
-    ($t:ty, $sqrt:path, $atan2:path, $sin:path, $cos:path, $exp:path, $ln:path, $tiny:expr, $lean:expr) => {
+    ($t:ty, $sqrt:path, $atan2:path, $ratio:path, $sin:path, $cos:path, $exp:path, $ln:path, $tiny:expr, $lean:expr) => {
         impl Real for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -516,6 +525,10 @@ macro_rules! impl_real_float {
             #[inline(always)]
             fn atan2(self, x: Self) -> Self {
                 $atan2(self, x)
+            }
+            #[inline(always)]
+            fn arc_ratio(self) -> Option<Self> {
+                $ratio(self)
             }
             #[inline(always)]
             fn sin(self) -> Self {
@@ -580,6 +593,7 @@ impl_real_float!(
     f64,
     libm::sqrt,
     libm::atan2,
+    arc_ratio::no_arc_ratio,
     libm::sin,
     libm::cos,
     libm::exp,
@@ -592,6 +606,7 @@ impl_real_float!(
     f32,
     hw::sqrtf,
     f32_math::atan2,
+    arc_ratio::arc_ratio_f32,
     libm::sinf,
     libm::cosf,
     libm::expf,
