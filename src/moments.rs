@@ -145,8 +145,11 @@ struct Arc<T> {
     circle: Circle,
 }
 
-fn check_m(m: u32) -> Result<(), Error> {
-    if m > MAX_EXPONENT {
+/// `m` within [`MAX_EXPONENT`] and the scalar type's own limit
+/// ([`Real::MAX_PHONG_EXPONENT`]: 255 for [`crate::Fixed22`], whose recurrences reach `m + 2`
+/// and whose range ends at 512).
+fn check_m<T: Real>(m: u32) -> Result<(), Error> {
+    if m > MAX_EXPONENT || m > T::MAX_PHONG_EXPONENT {
         Err(Error::ExponentOutOfRange)
     } else {
         Ok(())
@@ -477,7 +480,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p`, `w` or `tol`, [`Error::ZeroLength`] for `w`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
     pub fn try_axial_moment_within(
         &self,
         p: Vec3<T>,
@@ -485,7 +488,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         m: u32,
         tol: T,
     ) -> Result<T, Error> {
-        check_m(m)?;
+        check_m::<T>(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
@@ -527,7 +530,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `w`, [`Error::ZeroLength`] for `w`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
     #[inline]
     pub fn try_axial_moment(&self, p: Vec3<T>, w: Vec3<T>, m: u32) -> Result<T, Error> {
         self.try_axial_moment_within(p, w, m, T::ZERO)
@@ -565,7 +568,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p`, `w`, `v` or `tol`, [`Error::ZeroLength`] for `w` or `v`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
     pub fn try_double_axis_moment_within(
         &self,
         p: Vec3<T>,
@@ -574,7 +577,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         m: u32,
         tol: T,
     ) -> Result<T, Error> {
-        check_m(m)?;
+        check_m::<T>(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
@@ -638,7 +641,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p`, `n` or `axis`, [`Error::ZeroLength`] for `n` or `axis`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
     pub fn try_directional_luminaire(
         &self,
         p: Vec3<T>,
@@ -646,7 +649,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         axis: Vec3<T>,
         m: u32,
     ) -> Result<T, Error> {
-        check_m(m)?;
+        check_m::<T>(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
@@ -685,7 +688,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p`, `n` or `e`, [`Error::ZeroLength`] for `n` or `e`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
     pub fn try_glossy_reflection(
         &self,
         p: Vec3<T>,
@@ -693,7 +696,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         e: impl Direction<T>,
         m: u32,
     ) -> Result<T, Error> {
-        check_m(m)?;
+        check_m::<T>(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
@@ -738,7 +741,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         e: impl Direction<T>,
         m: u32,
     ) -> Result<T, Error> {
-        check_m(m)?;
+        check_m::<T>(m)?;
         if !p.is_finite() {
             return Err(Error::NotFinite("p"));
         }
@@ -774,9 +777,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
 ///
 /// # Errors
 /// [`Error::NotFinite`] for `w` or `v`, [`Error::ZeroLength`] for `w` or `v`,
-/// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT`.
+/// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
 pub fn try_lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> Result<T, Error> {
-    check_m(m)?;
+    check_m::<T>(m)?;
     let w = w.try_normalize("w")?;
     let v = v.try_normalize("v")?;
     let (d, s) = cos_sin_between(w, v);
