@@ -143,7 +143,7 @@ impl ModelDef {
 
     /// Whether the fixed-point backend answers this model.
     pub fn fixed(&self) -> bool {
-        FIXED_SUPPORTED.contains(&self.id)
+        FIXED_SUPPORTED.contains(&self.id) || FIXED_SUPPORTED_MORE.contains(&self.id)
     }
 }
 
@@ -187,6 +187,7 @@ const CAP: &[Param] = &[N, AXIS, SIGMA];
 const SPHERE: &[Param] = &[P, N, CENTER, RADIUS];
 const PHONG_HEMI: &[Param] = &[R, AXIS, M];
 const GLOSSY: &[Param] = &[P, N, dir("e"), VERTS, MF];
+const GLOSSY_T: &[Param] = &[P, N, dir("e"), VERTS, M];
 
 /// Every model of the protocol, in the order of `docs/models.md`.
 pub const MODELS: &[ModelDef] = &[
@@ -220,7 +221,7 @@ pub const MODELS: &[ModelDef] = &[
     model("phong_cap", &[R, AXIS, SIGMA, M]),
     model("phong_sphere", &[P, R, CENTER, RADIUS, M]),
     model("phong_polygon", &[P, R, VERTS, M]),
-    model("line_phong_peak", &[P, R, A, B, MF]),
+    model("line_phong_peak", &[P, R, A, B, M]),
     model(
         "rect_phong_peak",
         &[
@@ -229,15 +230,15 @@ pub const MODELS: &[ModelDef] = &[
             pt("origin"),
             pr("eu", Kind::Edge, ""),
             pr("ev", Kind::Edge, ""),
-            MF,
+            M,
         ],
     ),
-    model("axial_moment", &[P, VERTS, dir("w"), MF]),
-    model("double_axis_moment", &[P, VERTS, dir("w"), dir("v"), MF]),
+    model("axial_moment", &[P, VERTS, dir("w"), M]),
+    model("double_axis_moment", &[P, VERTS, dir("w"), dir("v"), M]),
     model("directional_luminaire", &[P, N, VERTS, AXIS, MF]),
     model("glossy_reflection", GLOSSY),
-    model("glossy_transmission", GLOSSY),
-    model("lune_normalization", &[dir("w"), dir("v"), MF]),
+    model("glossy_transmission", GLOSSY_T),
+    model("lune_normalization", &[dir("w"), dir("v"), M]),
     ModelDef {
         id: "sh9_irradiance",
         params: &[
@@ -285,8 +286,27 @@ pub fn find_model(id: &str) -> Option<&'static ModelDef> {
     MODELS.iter().find(|m| m.id == id)
 }
 
-/// The models the fixed-point backend ([`Fixed22`]) answers: the library's list.
+/// The models the fixed-point backend ([`Fixed22`]) answers: the library's list
+/// (`arealight::real::fixed22::SUPPORTED_MODELS`, the QEMU budget's fixed cases too) and
+/// [`FIXED_SUPPORTED_MORE`].
 pub const FIXED_SUPPORTED: &[&str] = &arealight::real::fixed22::SUPPORTED_MODELS;
+
+/// Models the fixed-point backend answers beyond the library's list (issue 13), each within
+/// 1/1024 of f64 on the same fixed-rounded inputs at m up to 255, the shading point at least
+/// 1/256 of the light's size from the light (`tests/fixed_line.rs`, `tests/fixed_moments.rs`):
+/// `line_phong_peak` 1.0e-4, `rect_phong_peak` 9.4e-5, `axial_moment` 4.7e-4,
+/// `double_axis_moment` 1.7e-4, `glossy_transmission` 1.0e-4, `lune_normalization` 1.6e-6.
+/// `line_lambert`, `directional_luminaire` and `glossy_reflection` miss 1/1024 and answer
+/// "unsupported" (`docs/eval-protocol.md` gives the measured reasons). Not in the library's
+/// list because that list also sets the QEMU budget's fixed cases (its M0 image is full).
+pub const FIXED_SUPPORTED_MORE: &[&str] = &[
+    "line_phong_peak",
+    "rect_phong_peak",
+    "axial_moment",
+    "double_axis_moment",
+    "glossy_transmission",
+    "lune_normalization",
+];
 
 /// The text of `--list-models`: one line per model, from [`MODELS`].
 pub fn list_models() -> String {
@@ -1244,7 +1264,7 @@ mod tests {
         for (i, m) in MODELS.iter().enumerate() {
             assert!(MODELS[..i].iter().all(|o| o.id != m.id), "{}", m.id);
         }
-        for id in FIXED_SUPPORTED {
+        for id in FIXED_SUPPORTED.iter().chain(FIXED_SUPPORTED_MORE) {
             assert!(find_model(id).is_some(), "{id}");
         }
         // That the dispatch reads exactly the declared parameters is checked end to end

@@ -779,8 +779,44 @@ fn unsupported_and_unknown_models() {
     }
 }
 
-/// The fixed-point backend's models (issue 3's scope and the shaping factors).
-const FIXED_MODELS: &[&str] = &arealight::real::fixed22::SUPPORTED_MODELS;
+/// The fixed-point backend's models (issue 3's scope and the shaping factors) and, from
+/// issue 13, those it answers beyond the library's list (host-sim's `FIXED_SUPPORTED_MORE`:
+/// within 1/1024 in tests/fixed_line.rs and tests/fixed_moments.rs).
+const FIXED_MODELS: &[&str] = &[
+    "hemi_const",
+    "hemi_cos",
+    "sky_overcast",
+    "sky_ground",
+    "cap_lambert",
+    "cap_lambert_hermite",
+    "sphere_lambert",
+    "sphere_lambert_hermite",
+    "polygon_lambert",
+    "phong_hemi_const",
+    "phong_hemi_cos",
+    "phong_cap",
+    "phong_sphere",
+    "phong_polygon",
+    "sh9_irradiance",
+    "sh9_disc_irradiance",
+    "superellipse_shape",
+    "distance_falloff",
+    "line_phong_peak",
+    "rect_phong_peak",
+    "axial_moment",
+    "double_axis_moment",
+    "glossy_transmission",
+    "lune_normalization",
+];
+
+/// The library's list is the first 18 of [`FIXED_MODELS`].
+#[test]
+fn fixed_models_extend_the_library_list() {
+    assert_eq!(
+        &FIXED_MODELS[..18],
+        &arealight::real::fixed22::SUPPORTED_MODELS[..]
+    );
+}
 
 #[test]
 fn fixed_backend_answers_its_models_within_1_1024_and_refuses_the_others() {

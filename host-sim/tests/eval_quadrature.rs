@@ -557,7 +557,20 @@ fn check_backend(backend: &str, cases: &[Case], tol_of: impl Fn(&Case) -> f64) {
     let lines: Vec<Value> = cases.iter().map(|c| c.line.clone()).collect();
     let answers = eval(backend, &lines);
     let fixed = backend == "fixed";
-    let supported = arealight::real::fixed22::SUPPORTED_MODELS;
+    // The library's list and the models eval's fixed backend answers beyond it (issue 13).
+    let more = [
+        "line_phong_peak",
+        "rect_phong_peak",
+        "axial_moment",
+        "double_axis_moment",
+        "glossy_transmission",
+        "lune_normalization",
+    ];
+    let supported: Vec<&str> = arealight::real::fixed22::SUPPORTED_MODELS
+        .iter()
+        .copied()
+        .chain(more)
+        .collect();
     let mut worst: BTreeMap<String, (f64, f64)> = BTreeMap::new();
     let mut failures = Vec::new();
     for (c, a) in cases.iter().zip(&answers) {
