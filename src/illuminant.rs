@@ -472,13 +472,19 @@ mod parallelogram_impls {
                 return black();
             }
             let mut sum = T::ZERO;
-            for_each_clipped_edge(&verts, p, n, |e| {
-                sum += if e.horizon {
-                    e.horizon_angle(n)
-                } else {
-                    edge_angle_term(e.ua, e.ub, e.d, n)
-                }
-            });
+            for_each_clipped_edge(
+                &verts,
+                p,
+                n,
+                #[inline(always)]
+                |e| {
+                    sum += if e.horizon {
+                        e.horizon_angle(n)
+                    } else {
+                        edge_angle_term(e.ua, e.ub, e.d, n)
+                    }
+                },
+            );
             grey((sum.abs() * T::FRAC_1_TAU).clamp01())
         }
         /// [`ParallelogramLight::phong_peak`]: Picott's peak of the lobe, not its integral.

@@ -152,13 +152,19 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return Ok(T::ZERO);
         }
         let mut sum = T::ZERO;
-        for_each_clipped_edge(&self.verts, p, n, #[inline(always)] |e| {
-            sum += if e.horizon {
-                e.horizon_angle(n)
-            } else {
-                edge_angle_term(e.ua, e.ub, e.d, n)
-            }
-        });
+        for_each_clipped_edge(
+            &self.verts,
+            p,
+            n,
+            #[inline(always)]
+            |e| {
+                sum += if e.horizon {
+                    e.horizon_angle(n)
+                } else {
+                    edge_angle_term(e.ua, e.ub, e.d, n)
+                }
+            },
+        );
         Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
     }
 
