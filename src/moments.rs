@@ -114,12 +114,15 @@
 //!
 //! [`crate::Fixed22`] (`tests/fixed_moments.rs`: the same random, adversarial and edge-on
 //! polygons scaled into its coordinate cube, `p` at least 1/256 of the polygon's size from
-//! it, m up to 255, which is also the largest `m` it accepts): axial moment within 4.7e-4 of
-//! f64, double-axis 1.7e-4, glossy transmission 1.0e-4, the lune 1.6e-6. The directional
-//! luminaire and glossy reflection miss 1/1024 there (2.8e-2 and 9.2e-3, a star polygon nearly
-//! edge-on with `p` just outside an edge: the fixed path's two-plane clipping answers 0), so
-//! the fixed-point eval backend does not answer them. Within a few LSB of the polygon's plane
-//! every model answers its in-plane 0, where f64 can see up to 2 pi.
+//! it, m up to 255, which is also the largest `m` it accepts): axial moment within 9.7e-5 of
+//! f64, double-axis 2.9e-5 (4.7e-4 and 1.7e-4 over ten seeds), the lune 1.6e-6. The clipped
+//! models miss 1/1024 there, so the fixed-point eval backend does not answer them: the
+//! directional luminaire 2.8e-2 and glossy reflection 9.2e-3 (a star polygon nearly edge-on,
+//! `p` 5e-3 of its size from a vertex: the fixed path answers 0; products of two point
+//! differences of length `d` carry `2^-22 (size/d)^2`, and the clipped solid angle there is
+//! itself 7.1e-3 off), glossy transmission up to 0.93 (edge-on polygons with the foot of `p`
+//! in the L's notch, with other seeds). Within a few LSB of the polygon's plane every model
+//! answers its in-plane 0, where f64 can see up to 2 pi.
 //!
 //! Two planes within `sqrt(eps)` of each other are taken as one (an error of about `2 eps`).
 //! Planes nearly opposite (`w.v` near -1, a thin lune) make the solid-angle term of odd `m`

@@ -1,9 +1,9 @@
 //! Arvo's moments in the fixed-point backend [`Fixed22`]: `[axial_moment]`,
-//! `[double_axis_moment]`, `[glossy_transmission]`, `[lune_normalization]` against f64 on the
-//! same (fixed-rounded) inputs, absolute error (the raw moments are at most 2 pi, the shading
-//! model about 1, the lune pi), target 1/1024 as every `Fixed22` row (tests/fixed.rs).
+//! `[double_axis_moment]`, `[lune_normalization]` against f64 on the same (fixed-rounded)
+//! inputs, absolute error (the raw moments are at most 2 pi, the lune pi), target 1/1024 as
+//! every `Fixed22` row (tests/fixed.rs).
 //!
-//! Cases: those of the f32 rows (`tests/moments.rs`): 2000 random polygons, the adversarial
+//! Cases: those of the f32 rows (`tests/moments.rs`): 6000 random polygons, the adversarial
 //! set (partly behind either clipping plane, nearly edge-on, p near an edge or a vertex,
 //! non-convex) and the extreme edge-on set, each with a second direction from the same
 //! generator, scaled by a power of two into the fixed path's coordinate cube (the moments are
@@ -13,13 +13,16 @@
 //! about 4 LSB of the plane the fixed path cannot tell the sides apart and answers the
 //! documented in-plane 0 where f64 sees the whole projection (up to 2 pi for the raw moments).
 //!
-//! Not supported in fixed point (measured here while probing, same cases):
-//! `[directional_luminaire]` 2.8e-2 at m = 0 and `[glossy_reflection]` 9.2e-3 at m = 1 (both
-//! on the adversarial "star4, edge-on h=1e-2, foot just outside edge" case, where the fixed
-//! path answers 0: a clipping decision of the two half-spaces differs from f64's); eval's
-//! fixed backend answers them "unsupported".
-//!
-//! This file runs in the test profile, which has overflow checks on.
+//! Not supported in fixed point (measured here while probing, on these cases and with nine
+//! other seeds): `[directional_luminaire]` 2.8e-2 at m = 0 and `[glossy_reflection]` 9.2e-3
+//! at m = 1 (both on the adversarial "star4, edge-on h=1e-2, foot just outside edge" case,
+//! p 5e-3 of the size from a vertex, where the fixed path answers 0: the clipping of the
+//! projection to the two half-spaces; the clipped solid angle there is itself 7.1e-3 off),
+//! `[glossy_transmission]` 1.0e-4 on these cases but up to 0.93 with other seeds (edge-on
+//! polygons with the foot of p outside, in the L's notch). eval's fixed backend answers them
+//! "unsupported". With those nine other seeds (6000 random polygons each) the three models
+//! here stayed within 4.7e-4 (axial: 2000 random polygons with this seed), 1.7e-4
+//! (double-axis).
 
 mod common;
 
@@ -36,21 +39,19 @@ const EXPONENTS: [u32; 9] = [0, 1, 2, 3, 16, 63, 64, 128, 255];
 enum Model {
     Axial,
     Double,
-    GlossyT,
 }
 
-const MODELS: [Model; 3] = [Model::Axial, Model::Double, Model::GlossyT];
+const MODELS: [Model; 2] = [Model::Axial, Model::Double];
 
 fn name(model: Model) -> &'static str {
     match model {
         Model::Axial => "axial_moment",
         Model::Double => "double_axis_moment",
-        Model::GlossyT => "glossy_transmission",
     }
 }
 
 /// The library's value through the `try_` functions (`None` where the model refuses): `a` is
-/// `w` (axial, double), `n` (transmission); `b` is `v` or `e`.
+/// `w`, `b` is `v` (double-axis only).
 fn lib<T: Real>(verts: &[V3], model: Model, p: V3, a: V3, b: V3, m: u32) -> Option<f64> {
     let vs: Vec<_> = verts.iter().map(|&x| v::<T>(x)).collect();
     let l = PolygonLight::<T, 8>::new(&vs).ok()?;
@@ -58,7 +59,6 @@ fn lib<T: Real>(verts: &[V3], model: Model, p: V3, a: V3, b: V3, m: u32) -> Opti
     match model {
         Model::Axial => l.try_axial_moment(p, a, m),
         Model::Double => l.try_double_axis_moment(p, a, b, m),
-        Model::GlossyT => l.try_glossy_transmission(p, a, b, m),
     }
     .ok()
     .map(|x| x.to_f64())
@@ -134,7 +134,7 @@ fn polygon_distance(verts: &[V3], p: V3) -> f64 {
 fn cases(rng: &mut Rng) -> (Vec<Case>, usize) {
     let mut out = Vec::new();
     for (set, list) in [
-        ("random", random_polygons(rng, 2000)),
+        ("random", random_polygons(rng, 6000)),
         ("adversarial", adversarial_polygons(rng)),
         ("edge-on", extreme_edge_on(rng)),
     ] {

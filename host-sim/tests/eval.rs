@@ -801,11 +801,9 @@ const FIXED_MODELS: &[&str] = &[
     "sh9_disc_irradiance",
     "superellipse_shape",
     "distance_falloff",
-    "line_phong_peak",
     "rect_phong_peak",
     "axial_moment",
     "double_axis_moment",
-    "glossy_transmission",
     "lune_normalization",
 ];
 

@@ -559,11 +559,9 @@ fn check_backend(backend: &str, cases: &[Case], tol_of: impl Fn(&Case) -> f64) {
     let fixed = backend == "fixed";
     // The library's list and the models eval's fixed backend answers beyond it (issue 13).
     let more = [
-        "line_phong_peak",
         "rect_phong_peak",
         "axial_moment",
         "double_axis_moment",
-        "glossy_transmission",
         "lune_normalization",
     ];
     let supported: Vec<&str> = arealight::real::fixed22::SUPPORTED_MODELS

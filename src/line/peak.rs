@@ -30,10 +30,11 @@ impl<T: Real> LineLight<T> {
     ///
     /// Accuracy (module docs): f64 within 6e-11 of a brute-force search for m <= 1000 (the
     /// worst case a segment 2e5 long seen from 1; 1e-13 typically), the error not growing with
-    /// `m`; f32 within 5e-7 of f64 and Fast32 within 7e-6 where well conditioned;
-    /// [`crate::Fixed22`] within 1.0e-4 of f64 for m <= 255 with `p` at least 1/256 of the
-    /// segment's length from it (`tests/fixed_line.rs`; closer, the fixed path may refuse `p`
-    /// as on the segment: measured up to 4.3e-4 of the length, and 4.9e-2 off). Cost: that of
+    /// `m`; f32 within 5e-7 of f64 and Fast32 within 7e-6 where well conditioned.
+    /// [`crate::Fixed22`] misses 1/1024 (2.6e-2 at m = 255 with `p` near the segment's line
+    /// beyond an end, and `p` refused as on the segment up to 4.3e-4 of the length from it:
+    /// the frame's perpendicular vanishes below `2^-11` of the size), so the fixed-point eval
+    /// backend does not answer this model. Cost: that of
     /// the segment frame (1 normalization, 1 division, 2 cross products, 1-3 sqrt), 2
     /// normalizations, 1 cross product, ~6 dot products, 1 sqrt, 1 `ln`, 1 `exp`. Fallback: 0
     /// for a non-finite or zero input or a point on the segment.
