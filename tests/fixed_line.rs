@@ -14,7 +14,8 @@
 //! Not supported in fixed point (measured on tests/line.rs's case sets in the same range):
 //! `[line_phong_peak]` 1.0e-4 on these cases but 2.6e-2 at m = 255 with another seed (p near
 //! the segment's line beyond an end: the perpendicular `g` of the segment frame, relative to
-//! the segment's size, has squared components below 2^-22 and its length vanishes), and
+//! the segment's size, has squared components below 2^-22 and its length vanishes; 8.1e-3
+//! remains with that length rescaled, p 1/100 of the length from an end), and
 //! `[line_lambert]` (not normalized: its values reach `(size/dist)^k`, beyond the format's 512
 //! for k = 2, 3 near the segment, and its k = 3 terms saturate inside; measured relative to
 //! max(1, I) as its f32 row: 1.6 at k = 3, 7e-2 on the random set). eval's fixed backend
