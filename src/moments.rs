@@ -115,7 +115,7 @@
 //! [`crate::Fixed22`] (`tests/fixed_moments.rs`: the same random, adversarial and edge-on
 //! polygons scaled into its coordinate cube, `p` at least 1/256 of the polygon's size from
 //! it, m up to 255, which is also the largest `m` it accepts): axial moment within 9.7e-5 of
-//! f64, double-axis 2.9e-5 (4.7e-4 and 1.7e-4 over ten seeds), the lune 1.6e-6. The clipped
+//! f64, double-axis 2.9e-5 (at most 4.7e-4 and 1.7e-4 over ten other seeds and case counts), the lune 1.6e-6. The clipped
 //! models miss 1/1024 there, so the fixed-point eval backend does not answer them: the
 //! directional luminaire 2.8e-2 and glossy reflection 9.2e-3 (a star polygon nearly edge-on,
 //! `p` 5e-3 of its size from a vertex: the fixed path answers 0; products of two point

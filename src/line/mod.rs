@@ -124,7 +124,7 @@
 //! parallelograms), 7e-10 at m = 2^16 and 2^20 (the brute force's own `cos^m`). f32 against f64
 //! 5e-7 where well conditioned, Fast32 7.4e-6, for m up to 1000. [`crate::Fixed22`]
 //! (`tests/fixed_line.rs`, m <= 255, `p` at least 1/256 of the light's size from it): the
-//! parallelogram's peak within 9.4e-5 (1.4e-4 over ten seeds). Not supported in fixed point:
+//! parallelogram's peak within 9.4e-5 (1.4e-4 over ten other seeds). Not supported in fixed point:
 //! the segment's peak (2.6e-2 at m = 255 for `p` near the segment's line beyond an end: `h`,
 //! the length of the frame's perpendicular `g`, vanishes when the squares of `g`'s components,
 //! relative to the size, fall below `2^-22`, and `p` is refused as on the segment up to 4.3e-4
