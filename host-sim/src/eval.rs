@@ -295,10 +295,10 @@ pub const FIXED_SUPPORTED: &[&str] = &arealight::real::fixed22::SUPPORTED_MODELS
 /// 1/256 of the light's size from the light (`tests/fixed_line.rs`, `tests/fixed_moments.rs`):
 /// `rect_phong_peak` 9.4e-5, `axial_moment` 9.7e-5, `double_axis_moment` 2.9e-5,
 /// `lune_normalization` 1.6e-6 (at most 1.4e-4, 4.7e-4, 1.7e-4 over ten other seeds and case
-/// counts). The other five (`line_lambert`, `line_phong_peak`, `directional_luminaire`, `glossy_reflection`,
-/// `glossy_transmission`) miss 1/1024 on some of those cases and answer "unsupported"
-/// (`docs/eval-protocol.md` gives the measured reasons). Not in the library's list because
-/// that list also sets the QEMU budget's fixed cases (its M0 image is full).
+/// counts). The other five (`line_lambert`, `line_phong_peak`, `directional_luminaire`,
+/// `glossy_reflection`, `glossy_transmission`) miss 1/1024 on some of those cases and answer
+/// "unsupported" (`docs/eval-protocol.md` gives the measured reasons). Not in the library's
+/// list because that list also sets the QEMU budget's fixed cases (its M0 image is full).
 pub const FIXED_SUPPORTED_MORE: &[&str] = &[
     "rect_phong_peak",
     "axial_moment",
