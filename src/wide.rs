@@ -19,6 +19,35 @@ pub(crate) fn mul_32(a: i32, b: i32) -> i64 {
     }
 }
 
+/// `floor(a b / 2^s)` for `16 <= s <= 32`, the caller guaranteeing that it fits an `i32`: on
+/// ARMv6-M four 16 x 16-bit products combined in 32-bit integers (as `Fixed22`'s product:
+/// with `a b = H 2^32 + w 2^16 + r`, `r < 2^16`, the result is `H 2^(32 - s) + floor(w /
+/// 2^(s - 16))`, no 64-bit addition or shift), the plain 64-bit product elsewhere. Exact on
+/// both (the same bits).
+#[cfg(any(feature = "phong", feature = "moments"))]
+#[inline(always)]
+pub(crate) fn mul_shr(a: i32, b: i32, s: u32) -> i32 {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        mul_shr_by_halves(a, b, s)
+    } else {
+        ((i64::from(a) * i64::from(b)) >> s.clamp(16, 32)) as i32
+    }
+}
+
+/// [`mul_shr`] from four 16 x 16-bit products (each fits the 32-bit `MULS`).
+#[cfg(any(feature = "phong", feature = "moments"))]
+#[inline(always)]
+pub(crate) fn mul_shr_by_halves(a: i32, b: i32, s: u32) -> i32 {
+    let s = s.clamp(16, 32);
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    // |ah|, |bh| <= 2^15 and al, bl < 2^16: every partial product fits its type.
+    let (m1, m2, ll) = (ah * bl, al * bh, (al as u32) * (bl as u32));
+    let h = (ah * bh).wrapping_add(m1 >> 16).wrapping_add(m2 >> 16);
+    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16); // < 3 2^16
+    h.wrapping_shl(32 - s).wrapping_add((w >> (s - 16)) as i32)
+}
+
 /// `a * b` exactly from four 16 x 16-bit products (each fits the 32-bit `MULS`).
 #[inline(always)]
 pub(crate) fn mul_32_by_halves(a: i32, b: i32) -> i64 {
@@ -45,7 +74,52 @@ pub(crate) fn mul_64(a: i64, b: i64) -> i64 {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
+
+    #[cfg(any(feature = "phong", feature = "moments"))]
+    #[test]
+    fn shifted_products_by_halves_equal_the_64_bit_ones() {
+        let mut x = 0x9E37_79B9u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x as i32
+        };
+        let edge = [
+            0,
+            1,
+            -1,
+            0xFFFF,
+            0x10000,
+            -0x10000,
+            i32::MAX,
+            i32::MIN,
+            1 << 30,
+        ];
+        for s in 16..=32u32 {
+            let mut pairs: std::vec::Vec<(i32, i32)> = std::vec::Vec::new();
+            for &a in &edge {
+                for &b in &edge {
+                    pairs.push((a, b));
+                }
+            }
+            for _ in 0..20_000 {
+                // Operands of every size, shifted down so that most products fit.
+                let (a, b) = (next(), next());
+                pairs.push((a >> (next() as u32 % 32), b >> (next() as u32 % 32)));
+            }
+            for (a, b) in pairs {
+                let exact = (i64::from(a) * i64::from(b)) >> s;
+                if exact != i64::from(exact as i32) {
+                    continue; // the caller's bound excludes it
+                }
+                assert_eq!(mul_shr_by_halves(a, b, s), exact as i32, "{a} * {b} >> {s}");
+                assert_eq!(mul_shr(a, b, s), exact as i32, "{a} * {b} >> {s}");
+            }
+        }
+    }
 
     #[test]
     fn products_are_exact() {

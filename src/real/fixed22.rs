@@ -225,6 +225,8 @@ impl MulAssign for Fixed22 {
 }
 
 mod kernels;
+#[cfg(any(feature = "phong", feature = "moments"))]
+pub(crate) use kernels::recip_q31;
 use kernels::*;
 
 impl Real for Fixed22 {

@@ -97,6 +97,40 @@ pub(super) const RECIP_ODD: [u32; 127] = {
     t
 };
 
+/// `2^31 / k` in Q31 for an integer `k` in [2, 256], rounded down to within one unit (from
+/// [`RECIP_ODD`] shifted by `k`'s power of two: `k = o 2^e`, `floor(ceil(2^32/o) / 2^(e+1))`,
+/// below the exact `2^31/k` by less than one unit plus `2^-e` of a unit, above it never by a
+/// unit); `2^31 / k` by division for other `k >= 1` (`i32::MAX` for `k = 0`, `k = 1`). The
+/// `1/k` steps of the fixed-point cosine-power recurrence (`polygon::arc`): a table lookup
+/// and a shift, no division.
+#[cfg(any(feature = "phong", feature = "moments"))]
+#[inline(always)]
+pub(crate) fn recip_q31(k: u32) -> i32 {
+    if k & 1 == 1 && k >= 3 {
+        // Odd k (the recurrence's every step for an even Phong exponent): one lookup.
+        if let Some(&r) = RECIP_ODD.get((k as usize - 3) / 2) {
+            return (r >> 1) as i32;
+        }
+    }
+    if !(2..=256).contains(&k) {
+        return if k <= 1 {
+            i32::MAX
+        } else {
+            ((1u32 << 31) / k) as i32
+        };
+    }
+    let e = k.trailing_zeros();
+    let o = k >> e;
+    let r = if o == 1 {
+        1u32 << 31 >> e
+    } else {
+        RECIP_ODD
+            .get((o as usize - 3) / 2)
+            .map_or(0, |&r| r >> (e + 1))
+    };
+    r as i32
+}
+
 /// `a / n` in Q22 for an integer `n` in [1, 256]: bit-identical to `div_bits(a, n 2^22)` (the
 /// quotient `a / n` of the raw bits, rounded half away from zero), without its 22 restoring
 /// steps. With `n = o 2^k` (`o` odd), `q = floor(|a| ceil(2^32/o) / 2^(32 + k))` is
