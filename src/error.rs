@@ -45,6 +45,11 @@ pub enum Error {
     /// A shading point on the segment of a line light (to within the precision of the scalar
     /// type: closer than `Real::TINY` times the light's distance scale).
     PointOnSegment,
+    /// The scalar type cannot resolve the named position finely enough for the model's
+    /// documented accuracy. Fixed point only: a shading point within the type's rounding of a
+    /// polygon light's plane and over its face, where the value jumps from 0 (in the plane)
+    /// to nearly the whole face just off it, and the type cannot tell which.
+    Unresolved(&'static str),
     /// A line light's decay exponent k outside {0, 1, 2, 3}.
     DecayOutOfRange,
     /// An unnormalized value (a line light's `I ~ distance^-k`) too large for the scalar type.
@@ -98,6 +103,10 @@ impl fmt::Display for Error {
                 write!(f, "{p} is outside the coordinate range of the scalar type (|x| <= 4 for the fixed-point type)")
             }
             Error::PointOnSegment => f.write_str("shading point is on the segment"),
+            Error::Unresolved(p) => write!(
+                f,
+                "{p} is within the scalar type's rounding of the light's plane, over its face: the value is not resolved (fixed point)"
+            ),
             Error::DecayOutOfRange => f.write_str("decay k is outside {0, 1, 2, 3}"),
             Error::Overflow => f.write_str("the value overflows the scalar type"),
             Error::NotPositive(p) => write!(f, "{p} is not > 0"),

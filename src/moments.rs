@@ -492,7 +492,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p`, `w` or `tol`, [`Error::ZeroLength`] for `w`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]),
+    /// [`Error::Unresolved`] for a fixed-point `p` within the type's rounding of the plane,
+    /// over the face (see [`PolygonLight::try_lambert`]).
     pub fn try_axial_moment_within(
         &self,
         p: Vec3<T>,
@@ -508,6 +510,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return Err(Error::NotFinite("tol"));
         }
         let w = w.try_normalize("w")?;
+        // Fixed point within its rounding of the plane over the face: unresolved (the moment
+        // jumps from 0 in the plane to the hemisphere's just off it).
+        if T::RESOLUTION > T::ZERO && self.in_plane(p) {
+            self.resolved_in_plane(p)?;
+        }
         if m == 0 {
             return Ok(self.signed_solid_angle_abs(p));
         }
@@ -580,7 +587,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] for `p`, `w`, `v` or `tol`, [`Error::ZeroLength`] for `w` or `v`,
-    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
+    /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]),
+    /// [`Error::Unresolved`] as [`PolygonLight::try_axial_moment_within`].
     pub fn try_double_axis_moment_within(
         &self,
         p: Vec3<T>,
@@ -598,6 +606,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         }
         let w = w.try_normalize("w")?;
         let v = v.try_normalize("v")?;
+        if T::RESOLUTION > T::ZERO && self.in_plane(p) {
+            self.resolved_in_plane(p)?;
+        }
         let scale = T::from_u32(m + 2);
         Ok(self.raw_moment_sum(p, w, v, m, tol * scale) / scale)
     }

@@ -381,7 +381,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[phong_polygon]` with precise errors: see [`PolygonLight::phong`].
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`.
+    /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`,
+    /// [`Error::Unresolved`] for a fixed-point `p` within the type's rounding of the plane, over
+    /// the face (see [`PolygonLight::try_lambert`]).
     pub fn try_phong(
         &self,
         lobe: &PhongLobe<T>,
@@ -391,6 +393,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         p.check_position("p")?;
         let r = r.try_unit("r")?.into_inner();
         if self.in_plane(p) {
+            self.resolved_in_plane(p)?;
             return Ok(T::ZERO);
         }
         let m = lobe.m;
