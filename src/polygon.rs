@@ -176,12 +176,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         let q = p.to_f64();
         let (px, py) = (q[i], q[j]);
         let mut inside = false;
-        let k = self.verts.len();
-        for a in 0..k {
-            let (va, vb) = (
-                self.verts[a].to_f64(),
-                self.verts[if a + 1 == k { 0 } else { a + 1 }].to_f64(),
-            );
+        // Each edge (va, vb), the last closing the ring (no indexing: nothing to check).
+        let next = self.verts.iter().skip(1).chain(self.verts.first());
+        for (va, vb) in self.verts.iter().zip(next) {
+            let (va, vb) = (va.to_f64(), vb.to_f64());
             let ((ax, ay), (bx, by)) = ((va[i], va[j]), (vb[i], vb[j]));
             if (ay > py) != (by > py) {
                 let x = ax + (py - ay) / (by - ay) * (bx - ax);
