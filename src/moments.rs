@@ -372,12 +372,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         };
         let need_omega = n & 1 == 1;
         let mut fan = ApexFan::new(self.normal() * sigma);
-        for i in 0..k {
-            let j = if i + 1 == k { 0 } else { i + 1 };
+        // Each edge (a, b) of the ring, the last closing it (no indexing: nothing to check).
+        for (&a, &b) in verts.iter().zip(verts.iter().skip(1).chain(verts.first())) {
             let arc = Arc {
-                ua: verts[i] - p,
-                ub: verts[j] - p,
-                d: verts[j] - verts[i],
+                ua: a - p,
+                ub: b - p,
+                d: b - a,
                 circle: Circle::Edge,
             };
             if need_omega {
@@ -529,14 +529,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return T::ZERO;
         };
         let verts = self.vertices();
-        let k = verts.len();
         let mut fan = ApexFan::new(self.normal() * sigma);
-        for i in 0..k {
-            let j = if i + 1 == k { 0 } else { i + 1 };
+        for (&a, &b) in verts.iter().zip(verts.iter().skip(1).chain(verts.first())) {
             fan.add(&ClippedEdge {
-                ua: verts[i] - p,
-                ub: verts[j] - p,
-                d: verts[j] - verts[i],
+                ua: a - p,
+                ub: b - p,
+                d: b - a,
                 horizon: false,
             });
         }

@@ -130,7 +130,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// up to 3.5 r; 3 is the middle.
     #[inline]
     pub(crate) fn in_plane(&self, p: Vec3<T>) -> bool {
-        let d = p - self.verts[0];
+        // (A polygon has at least 3 vertices: `first` only spares the bounds check.)
+        let Some(&v0) = self.verts.first() else {
+            return true;
+        };
+        let d = p - v0;
         let dist = self.normal.dot(d);
         let tol = if T::RESOLUTION > T::ZERO {
             T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
@@ -659,7 +663,10 @@ where
 /// second-order terms. Floats add nothing: the spec's tolerance stands.
 fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], Error> {
     // One copy of the validation for every backend (it runs in f64 anyway).
-    validate_polygon_f64(verts.len(), &|i| verts[i].to_f64(), T::RESOLUTION.to_f64())
+    // (`get`: no bounds check; every index asked for is below `verts.len()`, and a NaN vertex
+    // would be refused.)
+    let vert = |i: usize| verts.get(i).map_or([f64::NAN; 3], |v| v.to_f64());
+    validate_polygon_f64(verts.len(), &vert, T::RESOLUTION.to_f64())
 }
 
 /// [`validate_polygon`] on the `n` vertices `vert(i)` (in f64) of a backend of resolution `res`.

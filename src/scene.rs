@@ -385,9 +385,11 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_
     /// the whole scene's, whose other lights contribute exactly 0 here).
     #[inline]
     fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
+        // (`get`: the kept indices are the scene's by construction; no bounds check to fail.)
         let e = &self.scene.entries;
         self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
-            acc.add(e[i as usize].diffuse(p, n))
+            e.get(usize::from(i))
+                .map_or(acc, |l| acc.add(l.diffuse(p, n)))
         })
     }
     /// The sum of the kept lights' Phong terms, in push order.
@@ -395,7 +397,8 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_
     fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         let e = &self.scene.entries;
         self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
-            acc.add(e[i as usize].phong(lobe, p, r))
+            e.get(usize::from(i))
+                .map_or(acc, |l| acc.add(l.phong(lobe, p, r)))
         })
     }
 }

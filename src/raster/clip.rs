@@ -61,22 +61,29 @@ pub(super) fn clip_polygon<T: Real>(
     let mut b = [tri[0]; MAX_CLIPPED];
     for plane in 0..6 {
         let mut nb = 0;
-        for i in 0..na {
-            let (p, q) = (a[i], a[(i + 1) % na]);
+        // Appends to `b` while it has room (iterators and `get_mut`: no index to check, no
+        // division for the ring's wrap).
+        let mut push = |v: ClipVert<T>| {
+            if let Some(slot) = b.get_mut(nb) {
+                *slot = v;
+                nb += 1;
+            }
+        };
+        let ring = a.iter().take(na);
+        let next = a.iter().take(na).skip(1).chain(a.first());
+        for (&p, &q) in ring.zip(next) {
             let dp = plane_distances(&p.c, near, far)[plane];
             let dq = plane_distances(&q.c, near, far)[plane];
             let (pin, qin) = (dp >= T::ZERO, dq >= T::ZERO);
-            if pin && nb < MAX_CLIPPED {
-                b[nb] = p;
-                nb += 1;
+            if pin {
+                push(p);
             }
-            if pin != qin && nb < MAX_CLIPPED {
+            if pin != qin {
                 // From the inside vertex toward the outside one: the same point for both
                 // triangles that share this edge.
                 let (i_v, o_v, di, dout) = if pin { (p, q, dp, dq) } else { (q, p, dq, dp) };
                 let t = (di / (di - dout)).clamp01();
-                b[nb] = i_v.lerp(&o_v, t);
-                nb += 1;
+                push(i_v.lerp(&o_v, t));
             }
         }
         a = b;
@@ -85,6 +92,8 @@ pub(super) fn clip_polygon<T: Real>(
             return 0;
         }
     }
-    out[..na].copy_from_slice(&a[..na]);
+    for (o, v) in out.iter_mut().zip(a.iter().take(na)) {
+        *o = *v;
+    }
     na
 }
