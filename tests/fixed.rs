@@ -276,21 +276,6 @@ impl Track {
     }
 }
 
-/// The power of two that brings every coordinate of `pts` within [`Fixed22::COORDINATE_LIMIT`]
-/// (exact in f64; the area-light models are scale invariant, so the scaled case is the same
-/// case for the model).
-fn fit_scale(pts: &[V3]) -> f64 {
-    let m = pts
-        .iter()
-        .flat_map(|p| p.iter())
-        .fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut s = 1.0;
-    while m * s > F::COORDINATE_LIMIT {
-        s *= 0.5;
-    }
-    s
-}
-
 fn dirs(rng: &mut Rng, count: usize) -> Vec<V3> {
     let mut out: Vec<V3> = (0..count).map(|_| rng.sdir()).collect();
     for a in [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] {

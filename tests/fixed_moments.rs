@@ -83,19 +83,6 @@ fn second_dir(rng: &mut Rng, c: &PolyCase, i: usize) -> V3 {
     }
 }
 
-/// The power of two that brings every coordinate within [`Fixed22::COORDINATE_LIMIT`].
-fn fit_scale(pts: &[V3]) -> f64 {
-    let m = pts
-        .iter()
-        .flat_map(|p| p.iter())
-        .fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut s = 1.0;
-    while m * s > F::COORDINATE_LIMIT {
-        s *= 0.5;
-    }
-    s
-}
-
 /// A case rounded to the fixed format: vertices, p, first and second direction.
 struct Case {
     c: PolyCase,

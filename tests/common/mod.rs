@@ -1243,3 +1243,19 @@ pub fn extreme_edge_on(rng: &mut Rng) -> Vec<PolyCase> {
 
 /// `PI` re-exported for brevity in test files.
 pub const PI_: f64 = PI;
+
+/// The power of two that brings every coordinate of `pts` within `Fixed22`'s
+/// `COORDINATE_LIMIT` (exact in f64; the area-light models are scale invariant, so the scaled
+/// case is the same case for the model): the fixed-point tests' way into the cube.
+#[cfg(feature = "fixed")]
+pub fn fit_scale(pts: &[V3]) -> f64 {
+    let m = pts
+        .iter()
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut s = 1.0;
+    while m * s > arealight::Fixed22::COORDINATE_LIMIT {
+        s *= 0.5;
+    }
+    s
+}
