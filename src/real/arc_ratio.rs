@@ -48,42 +48,34 @@ const P: [f32; 10] = [
     0.011_357_001,
 ];
 
+/// `true` on soft-float targets (ARM without `eabihf`, RISC-V without F), where every float
+/// operation is a library call.
+const SOFT_FLOAT: bool = cfg!(any(
+    all(target_arch = "arm", not(target_abi = "eabihf")),
+    all(
+        any(target_arch = "riscv32", target_arch = "riscv64"),
+        not(target_feature = "f")
+    )
+));
+
 /// `<f32 as Real>::arc_ratio`: [`arc_ratio_poly`] where the target has a floating-point unit
-/// (or is not a soft-float microcontroller), `None` on soft-float ARM and RISC-V targets, where
-/// each float operation is a library call and the arc-tangent form costs fewer of them
-/// (measured on the Cortex-M0: `polygon_lambert` in f32 30 833 instructions with the arc
-/// tangent, 34 026 with the polynomial), as for the arc tangent itself (`f32_math`).
-#[cfg(not(any(
-    all(target_arch = "arm", not(target_abi = "eabihf")),
-    all(
-        any(target_arch = "riscv32", target_arch = "riscv64"),
-        not(target_feature = "f")
-    )
-)))]
-pub(crate) use arc_ratio_poly as arc_ratio_f32;
-#[cfg(any(
-    all(target_arch = "arm", not(target_abi = "eabihf")),
-    all(
-        any(target_arch = "riscv32", target_arch = "riscv64"),
-        not(target_feature = "f")
-    )
-))]
-pub(crate) use no_arc_ratio as arc_ratio_f32;
+/// (or is not a soft-float microcontroller), `None` on soft-float targets ([`SOFT_FLOAT`]),
+/// where the arc-tangent form costs fewer library calls (measured on the Cortex-M0:
+/// `polygon_lambert` in f32 30 833 instructions with the arc tangent, 34 026 with the
+/// polynomial), as for the arc tangent itself (`f32_math`).
+#[inline(always)]
+pub(crate) fn arc_ratio_f32(c: f32) -> Option<f32> {
+    if SOFT_FLOAT {
+        None
+    } else {
+        arc_ratio_poly(c)
+    }
+}
 
 /// `acos(c)/sqrt(1 - c^2)` for `c` in [0, 1] (1.58 ULP; see the module docs). For `c` slightly
 /// outside [0, 1] (rounding) the polynomial continues smoothly; it is finite for every finite
 /// `c`, and the caller sends `c < 0` and non-finite `c` elsewhere.
 #[inline(always)]
-#[cfg_attr(
-    any(
-        all(target_arch = "arm", not(target_abi = "eabihf")),
-        all(
-            any(target_arch = "riscv32", target_arch = "riscv64"),
-            not(target_feature = "f")
-        )
-    ),
-    allow(dead_code)
-)]
 pub(crate) fn arc_ratio_poly(c: f32) -> Option<f32> {
     let x = 1.0 - c;
     let mut q = P[9];
