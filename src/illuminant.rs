@@ -453,7 +453,7 @@ mod line_impls {
 #[cfg(all(feature = "line", feature = "polygon"))]
 mod parallelogram_impls {
     use super::*;
-    use crate::polygon::{edge_angle_term, for_each_clipped_edge};
+    use crate::polygon::for_each_clipped_edge;
     use crate::ParallelogramLight;
 
     impl<T: Real> Illuminant<T> for ParallelogramLight<T> {
@@ -477,13 +477,7 @@ mod parallelogram_impls {
                 p,
                 n,
                 #[inline(always)]
-                |e| {
-                    sum += if e.horizon {
-                        e.horizon_angle(n)
-                    } else {
-                        edge_angle_term(e.ua, e.ub, e.d, n)
-                    }
-                },
+                |e| sum += e.lambert_term(n),
             );
             grey((sum.abs() * T::FRAC_1_TAU).clamp01())
         }

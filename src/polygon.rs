@@ -215,13 +215,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             p,
             n,
             #[inline(always)]
-            |e| {
-                sum += if e.horizon {
-                    e.horizon_angle(n)
-                } else {
-                    edge_angle_term(e.ua, e.ub, e.d, n)
-                }
-            },
+            |e| sum += e.lambert_term(n),
         );
         Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
     }
@@ -300,6 +294,17 @@ impl<T: Real> ClippedEdge<T> {
             (y, x) = (g.dot(k), dot);
         }
         y.atan2(x)
+    }
+
+    /// The edge's term of Lambert's formula about the unit normal `n`: the horizon arc's
+    /// signed angle, or [`edge_angle_term`]. (Inlined into the caller's walk.)
+    #[inline(always)]
+    pub(crate) fn lambert_term(&self, n: Vec3<T>) -> T {
+        if self.horizon {
+            self.horizon_angle(n)
+        } else {
+            edge_angle_term(self.ua, self.ub, self.d, n)
+        }
     }
 
     /// The same edge scaled by a power of two that brings its largest coordinate into [1, 2)
