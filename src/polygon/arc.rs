@@ -87,10 +87,10 @@ pub(crate) fn cos_power_sums<T: Real>(
 
 /// [`cos_power_sums`] for fixed point: the recurrence in `i32` with 28 fraction bits (every
 /// quantity of it lies within +-8, bounds below), six more than `Fixed22`'s 22, so its
-/// roundings stay below the type's own. Each product is [`mul_shr`] (four 16 x 16-bit `MULS`
+/// roundings stay below the type's own. Each product is [`mul_shr`](crate::wide::mul_shr) (four 16 x 16-bit `MULS`
 /// on the Cortex-M0, no saturation test: the bounds hold), and the division by the step's `k`
 /// becomes `t = u + (l + l2 - u)/k` with `u = f t` (the same value as
-/// `(l + l2 + (k - 1) f t)/k`) and `1/k` a Q31 reciprocal from a table ([`recip_q31`]): four
+/// `(l + l2 + (k - 1) f t)/k`) and `1/k` a Q31 reciprocal from a table ([`recip_q31`](crate::real::fixed22::recip_q31)): four
 /// products and no division per step, against three saturating products, an integer product
 /// and a table division in the type's own arithmetic.
 ///

@@ -1,0 +1,188 @@
+//! The Lambert edge term of a clipped polygon edge (`theta (G . k)/|G|`, see the module docs
+//! of [`crate::polygon`]): the arc-ratio form on backends that have one, the arc-tangent form
+//! elsewhere, and the power-of-two rescaling of the cold path that keeps every term scale-free.
+
+use crate::{Real, Vec3};
+
+/// `theta (G . k)/|G|` with `G = ua x d (= ua x ub)` and `theta` the angle between `ua` and
+/// `ub`: the edge term of Lambert's formula from unnormalized endpoints. Scale-free, and `G`
+/// from the edge vector `d` keeps its accuracy for edges seen nearly end-on.
+///
+/// On a backend with an arc ratio (f32), an edge within a right angle takes
+/// [`edge_ratio_term`], inlined into the caller's loop (no arc tangent, and the edge's
+/// vectors stay in registers); every other edge, and every edge on the other backends, takes
+/// [`edge_atan_term`] (out of line).
+#[inline(always)]
+pub(crate) fn edge_angle_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: Vec3<T>) -> T {
+    if T::RESOLUTION == T::ZERO {
+        if let Some(term) = edge_ratio_term(ua, ub, ua.cross(d), ua.dot(ub), k) {
+            return term;
+        }
+    }
+    edge_atan_term(ua, ub, d, k)
+}
+
+/// [`edge_angle_term`] with `theta = atan2(|G|, ua.ub)`: no per-vertex normalization is
+/// needed (the form is scale-free).
+///
+/// Where `G` or `ua.ub` would leave the range in which products are normal and finite
+/// ([`products_in_range`]: coordinates beyond about `1/TINY` or below `TINY` in absolute terms,
+/// e.g. f32 configurations scaled by `2^64` or `2^-70`) the edge is first scaled by a power of
+/// two ([`ClippedEdge::rescaled`](super::ClippedEdge::rescaled), exact), on a cold path: the test costs two comparisons.
+#[inline]
+pub(super) fn edge_atan_term<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>, k: Vec3<T>) -> T {
+    let g = ua.cross(d);
+    let dot = ua.dot(ub);
+    if T::RESOLUTION > T::ZERO {
+        // Fixed point (decided at compile time): one exponent, no range to leave; `G` is scaled
+        // by its largest component before it is squared.
+        return edge_angle_finish(g, g.max_abs(), dot, k);
+    }
+    // Floats: where `|G|^2` is a normal, finite number (and `ua.ub` in range), `|G|` and
+    // `1/|G|` come from it directly, with no scaling (the hot path: every edge of a scene at
+    // any ordinary scale); elsewhere the edge is scaled by a power of two first (cold).
+    let gg = g.dot(g);
+    let lo = T::TINY * T::TINY;
+    let hi = T::ONE / lo;
+    if gg >= lo && gg <= hi && dot.abs() <= hi {
+        let (s, inv) = gg.sqrt_rsqrt();
+        return (s.atan2(dot) * g.dot(k) * inv).finite_or_zero();
+    }
+    edge_angle_term_rescaled(ua, ub, d, k)
+}
+
+/// The hot path of [`edge_angle_term`] for a backend with a cheap [`Real::arc_ratio`] (f32):
+/// with `r = 1/(|ua| |ub|)` and `c = (ua.ub) r = cos(theta)`, the term `theta (G.k)/|G|` is
+/// `R(c) (G.k) r` (`|G| = |ua| |ub| sin(theta)`, `R = theta/sin(theta)`): one reciprocal
+/// square root and a short polynomial in place of `|G|`, its reciprocal and an arc tangent.
+/// `None` (the caller takes the arc-tangent form) for an edge subtending more than a right
+/// angle (`c < 0`, towards `R`'s singularity at `theta = pi`), for squared lengths outside
+/// `[TINY, 1/TINY]` (then `|ua|^2 |ub|^2` might leave the normal range) and for a backend
+/// without an arc ratio (decided at compile time).
+#[inline(always)]
+pub(super) fn edge_ratio_term<T: Real>(
+    ua: Vec3<T>,
+    ub: Vec3<T>,
+    g: Vec3<T>,
+    dot: T,
+    k: Vec3<T>,
+) -> Option<T> {
+    T::ONE.arc_ratio()?;
+    let (la2, lb2) = (ua.dot(ua), ub.dot(ub));
+    let (lo, hi) = (T::TINY, T::ONE / T::TINY);
+    if !(la2 >= lo && la2 <= hi && lb2 >= lo && lb2 <= hi) {
+        return None;
+    }
+    let r = (la2 * lb2).rsqrt();
+    let c = dot * r;
+    if !(c >= T::ZERO) {
+        return None;
+    }
+    Some(c.arc_ratio()? * g.dot(k) * r)
+}
+
+/// [`edge_angle_term`] for an edge whose products leave the normal range: the same term from
+/// the edge scaled by a power of two (0 if it has no finite, non-zero coordinate).
+#[cold]
+#[inline(never)]
+pub(super) fn edge_angle_term_rescaled<T: Real>(
+    ua: Vec3<T>,
+    ub: Vec3<T>,
+    d: Vec3<T>,
+    k: Vec3<T>,
+) -> T {
+    match rescaled_products(ua, ub, d) {
+        Some((g, dot)) => edge_angle_finish(g, g.max_abs(), dot, k),
+        None => T::ZERO,
+    }
+}
+
+/// `atan2(|G|, dot) (G . k)/|G|` from `G`, its largest component `m` and `dot = ua.ub`.
+#[inline(always)]
+pub(super) fn edge_angle_finish<T: Real>(g: Vec3<T>, m: T, dot: T, k: Vec3<T>) -> T {
+    if !(m > T::ZERO) || !m.is_finite() {
+        return T::ZERO;
+    }
+    // Scale to avoid overflow of |G|^2 for large coordinates.
+    let (g, d) = g.rescale(m);
+    // |G| and 1/|G| together (fixed point: one rsqrt, no division).
+    let (s, inv) = g.dot(g).sqrt_rsqrt();
+    let theta = (s * d).atan2(dot);
+    (theta * g.dot(k) * inv).finite_or_zero()
+}
+
+/// `(ua x d, ua.ub)` from the edge scaled by a power of two ([`scaled_to_unit`]): the cold
+/// path of the edge terms whose products leave the normal range. `None` where
+/// [`scaled_to_unit`] has no scale.
+#[inline(always)]
+pub(crate) fn rescaled_products<T: Real>(
+    ua: Vec3<T>,
+    ub: Vec3<T>,
+    d: Vec3<T>,
+) -> Option<(Vec3<T>, T)> {
+    if T::RESOLUTION > T::ZERO {
+        return None;
+    }
+    rescaled_products_float(ua, ub, d)
+}
+
+#[cold]
+#[inline(never)]
+pub(super) fn rescaled_products_float<T: Real>(
+    ua: Vec3<T>,
+    ub: Vec3<T>,
+    d: Vec3<T>,
+) -> Option<(Vec3<T>, T)> {
+    let [ua, ub, d] = scaled_to_unit_float([ua, ub, d])?;
+    Some((ua.cross(d), ua.dot(ub)))
+}
+
+/// `true` if products of an edge's coordinates are safe: `m` (the largest component of a
+/// product such as `G = ua x d`) in `[TINY^2, 1/TINY^2]` and `big` (another product's
+/// magnitude, e.g. `|ua.ub|`) at most `1/TINY^2`. Then every product that matters is a normal
+/// float (its rounding relative, as at unit scale) and no square of them overflows, so the
+/// result is the unit-scale result to the last bit or so. Always `true` for fixed point
+/// (one exponent: there is no range to leave, and no rescaling to do).
+#[inline(always)]
+pub(crate) fn products_in_range<T: Real>(m: T, big: T) -> bool {
+    if T::RESOLUTION > T::ZERO {
+        return true;
+    }
+    let lo = T::TINY * T::TINY;
+    let hi = T::ONE / lo;
+    m >= lo && m <= hi && big <= hi
+}
+
+/// `vs` scaled by one power of two, `2^-e` with `2^e <= m < 2^(e+1)` for `m` their largest
+/// component, so that `m` lands in [1, 2): exact (only exponents change), so a configuration
+/// and its scaled copies give the same bits. The cold path of the polygon terms (the terms are
+/// scale-free). `None` if `m` is 0 or not finite, and for fixed point (see
+/// [`products_in_range`]). Cost: a conversion to f64 and back, 6 products per vector.
+#[inline(always)]
+pub(crate) fn scaled_to_unit<T: Real, const K: usize>(vs: [Vec3<T>; K]) -> Option<[Vec3<T>; K]> {
+    // Decided at compile time: no cold path at all in the fixed-point kernels.
+    if T::RESOLUTION > T::ZERO {
+        return None;
+    }
+    scaled_to_unit_float(vs)
+}
+
+#[cold]
+#[inline(never)]
+pub(super) fn scaled_to_unit_float<T: Real, const K: usize>(
+    vs: [Vec3<T>; K],
+) -> Option<[Vec3<T>; K]> {
+    let m = vs
+        .iter()
+        .fold(T::ZERO, |acc, v| acc.max(v.max_abs()))
+        .to_f64();
+    if !(m > 0.0) || !m.is_finite() {
+        return None;
+    }
+    // Two factors, each representable in T (f32: 2^-e reaches 2^149).
+    let e = libm::ilogb(m);
+    let e1 = -e / 2;
+    let f1 = T::from_f64(libm::ldexp(1.0, e1));
+    let f2 = T::from_f64(libm::ldexp(1.0, -e - e1));
+    Some(vs.map(|v| v * f1 * f2))
+}
