@@ -1247,7 +1247,6 @@ pub const PI_: f64 = PI;
 /// The power of two that brings every coordinate of `pts` within `Fixed22`'s
 /// `COORDINATE_LIMIT` (exact in f64; the area-light models are scale invariant, so the scaled
 /// case is the same case for the model): the fixed-point tests' way into the cube.
-#[cfg(feature = "fixed")]
 pub fn fit_scale(pts: &[V3]) -> f64 {
     let m = pts
         .iter()
