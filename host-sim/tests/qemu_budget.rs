@@ -25,13 +25,19 @@
 //! `qemu-system-misc`) for the RISC-V target alone (the ARM targets still run). Run it alone
 //! with `cargo test -p host-sim --test qemu_budget`.
 
+#[path = "support/kernel_sizes.rs"]
+mod kernel_sizes;
 #[path = "support/process.rs"]
 mod process;
+#[path = "support/qemu_output.rs"]
+mod qemu_output;
 #[path = "support/riscv_refs.rs"]
 mod riscv_refs;
 #[path = "support/unit_rows.rs"]
 mod unit_rows;
+use kernel_sizes::{kernel_sizes, kernel_symbol};
 use process::{root, run};
+use qemu_output::{check_counter, check_no_wrap, parse, Line};
 
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/cases.rs"]
@@ -51,7 +57,6 @@ use std::time::Duration;
 
 use arealight::{Fast32, Fixed22, Real};
 use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
-use object::{Object, ObjectSection, ObjectSymbol, SymbolKind};
 
 /// A backend as the host knows it: its name in the firmware's output, the type name in its
 /// kernels' symbols, how inputs are rounded to it, its tolerance, and its f32-exact evaluation
@@ -255,163 +260,6 @@ fn qemu(triple: &str, machine: &str, elf: &Path) -> Result<String, String> {
     run(&mut cmd, Duration::from_secs(120), |_| true)
 }
 
-/// One parsed `V` line, or `A` line (then `k` is its sample count).
-struct Line {
-    k: Option<usize>,
-    backend: String,
-    model: String,
-    input: usize,
-    count: u32,
-    value: Vec<f64>,
-}
-
-/// The `key=value` pairs of the `SELF` line.
-type SelfCheck = Vec<(String, u32)>;
-
-fn parse(out: &str) -> Result<(Vec<Line>, Option<SelfCheck>), String> {
-    let mut lines = Vec::new();
-    let mut selfcheck = None;
-    let mut done = false;
-    for l in out.lines() {
-        let f: Vec<&str> = l.split_whitespace().collect();
-        match f.first().copied() {
-            Some("V") if f.len() >= 6 => {
-                let num = |s: &str| s.parse::<u32>().map_err(|e| format!("{l}: {e}"));
-                let value = f[5..]
-                    .iter()
-                    .map(|h| u64::from_str_radix(h, 16).map(f64::from_bits))
-                    .collect::<Result<Vec<_>, _>>()
-                    .map_err(|e| format!("{l}: {e}"))?;
-                lines.push(Line {
-                    k: None,
-                    backend: f[1].to_owned(),
-                    model: f[2].to_owned(),
-                    input: num(f[3])? as usize,
-                    count: num(f[4])?,
-                    value,
-                });
-            }
-            Some("A") if f.len() == 7 => {
-                let num = |s: &str| s.parse::<u32>().map_err(|e| format!("{l}: {e}"));
-                let value = u64::from_str_radix(f[6], 16)
-                    .map(f64::from_bits)
-                    .map_err(|e| format!("{l}: {e}"))?;
-                lines.push(Line {
-                    k: Some(num(f[3])? as usize),
-                    backend: f[1].to_owned(),
-                    model: f[2].to_owned(),
-                    input: num(f[4])? as usize,
-                    count: num(f[5])?,
-                    value: vec![value],
-                });
-            }
-            Some("SELF") => {
-                selfcheck = Some(
-                    f[1..]
-                        .iter()
-                        .filter_map(|kv| {
-                            let (k, v) = kv.split_once('=')?;
-                            Some((k.to_owned(), v.parse().ok()?))
-                        })
-                        .collect(),
-                );
-            }
-            Some("FAIL") => return Err(format!("the firmware failed: {l}")),
-            Some("DONE") => done = true,
-            _ => {}
-        }
-    }
-    if !done {
-        return Err("the firmware did not print DONE".into());
-    }
-    Ok((lines, selfcheck))
-}
-
-/// The counter self-check, from the firmware's numbers: `base` is the two TIM2 loads alone,
-/// `n<N>` the same loads around N iterations of `subs`/`bne` (all in assembly). Each must be
-/// exactly `base + 2N`, and the loop lengths must include a long one. On RISC-V the same with
-/// two `csrr instret` around `addi`/`bnez` (`triple` says which).
-///
-/// `empty` is the count of an empty measured region in Rust (`Tim2::empty`), which the
-/// firmware subtracts from every count: the same two loads plus at most a re-materialized
-/// address of TIM2_CNT (a literal load on the M0, `movw`/`movt` on the M4F; nothing on
-/// RISC-V), so it must be `base` to `base + 2` (`counter::EMPTY_SLACK`). Below `base` the loads
-/// themselves would not be counted; above, the empty region holds code that a measured call
-/// does not, and every count would be short by the difference.
-fn check_counter(triple: &str, s: &[(String, u32)]) -> Result<String, String> {
-    let (counter, looped) = if triple.starts_with("riscv32") {
-        ("instret", "addi/bnez")
-    } else {
-        ("TIM2", "subs/bne")
-    };
-    let get = |key: &str| s.iter().find(|(k, _)| k == key).map(|kv| kv.1);
-    let (base, empty) = (get("base"), get("empty"));
-    let loops: Vec<(u32, u32)> = s
-        .iter()
-        .filter_map(|(k, v)| Some((k.strip_prefix('n')?.parse().ok()?, *v)))
-        .collect();
-    let shown = s
-        .iter()
-        .map(|(k, v)| format!("{k}={v}"))
-        .collect::<Vec<_>>()
-        .join(" ");
-    match (base, empty) {
-        (Some(b), Some(e))
-            if (1..=2).contains(&b)
-                && (b..=b + EMPTY_SLACK).contains(&e)
-                && loops.iter().any(|&(n, _)| n >= 1000)
-                && loops.iter().all(|&(n, c)| c == b + 2 * n) =>
-        {
-            Ok(format!(
-                "loads alone {b}, empty region {e} (subtracted from every count; {b} to {b} + \
-                 {EMPTY_SLACK}), loops {} (each exactly 2n + {b})",
-                loops
-                    .iter()
-                    .map(|(n, c)| format!("n={n}: {c}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ))
-        }
-        _ => Err(format!(
-            "counter self-check FAILED ({shown}): a loop of n {looped} iterations must read \
-             exactly 2n more on {counter} than the loads alone (base), and the empty region \
-             (empty, subtracted from every count) must read base to base + {EMPTY_SLACK}; \
-             {counter} does not count executed instructions exactly on this QEMU ({}), so no \
-             instruction count can be trusted",
-            qemu_version(qemu_binary(triple))
-        )),
-    }
-}
-
-/// The slack of the empty region over the two loads (see [`check_counter`]); the firmware's
-/// `counter::EMPTY_SLACK`.
-const EMPTY_SLACK: u32 = 2;
-
-/// No count wrapped: the firmware subtracts the empty region's count from each raw TIM2
-/// difference and stops with a `FAIL` line if a region reads less; were it to wrap instead,
-/// the count would be within `empty` of 2^32. No call here comes near 2^31 instructions, so
-/// every count of a `V`, `A`, `D`, `S` or `Q` line must be below it.
-fn check_no_wrap(short: &str, out: &str, failures: &mut Vec<String>) {
-    for l in out.lines() {
-        let f: Vec<&str> = l.split_whitespace().collect();
-        let fields: &[usize] = match f.first().copied() {
-            Some("V") | Some("D") | Some("U") => &[4],
-            Some("A") => &[5],
-            Some("S") => &[3],
-            Some("Q") => &[5, 6],
-            _ => continue,
-        };
-        for &i in fields {
-            match f.get(i).map(|x| x.parse::<u64>()) {
-                Some(Ok(n)) if n < 1 << 31 => {}
-                _ => failures.push(format!(
-                    "{short}: count field {i} of `{l}` is not a count below 2^31 (wrapped?)"
-                )),
-            }
-        }
-    }
-}
-
 fn qemu_version(binary: &str) -> String {
     Command::new(binary)
         .arg("--version")
@@ -420,175 +268,6 @@ fn qemu_version(binary: &str) -> String {
         .and_then(|o| String::from_utf8(o.stdout).ok())
         .and_then(|s| s.lines().next().map(str::to_owned))
         .unwrap_or_else(|| format!("{binary} not found"))
-}
-
-/// Code bytes per kernel symbol: the kernel plus every function it reaches by `bl`/`b.w` or
-/// through a function pointer in its literal pool, plus the constant objects those literal
-/// pools point into (each counted once). On RISC-V the references are found by
-/// [`riscv_refs::refs`] instead (`jal`/`j` and branches, `lui`/`auipc` pairs: calls, function
-/// pointers and constant objects).
-///
-/// Kernels that compile to the same code (e.g. a model's `Fast32` and `f32` kernels when every
-/// operation they use is the same) may be merged by LLVM into one body with several symbols at
-/// one address. The graph has one node per address, with every name found there, and every
-/// kernel name at a node gets that node's size: two kernels sharing one body are each reported
-/// with the whole of it (what either costs in flash alone; together they cost it once). A
-/// merged kernel that is left without any symbol is found by [`merged_kernel`].
-fn kernel_sizes(elf: &[u8]) -> Result<HashMap<String, u64>, String> {
-    let file = object::File::parse(elf).map_err(|e| e.to_string())?;
-    struct Sym {
-        addr: u64,
-        size: u64,
-        /// Every symbol name at this address (more than one where bodies were merged).
-        names: Vec<String>,
-        func: bool,
-    }
-    let mut syms: Vec<Sym> = file
-        .symbols()
-        .filter(|s| s.size() > 0 && matches!(s.kind(), SymbolKind::Text | SymbolKind::Data))
-        .map(|s| Sym {
-            addr: s.address() & !1,
-            size: s.size(),
-            names: vec![s
-                .name()
-                .map(|n| format!("{:#}", rustc_demangle::demangle(n)))
-                .unwrap_or_default()],
-            func: s.kind() == SymbolKind::Text,
-        })
-        .collect();
-    syms.sort_by_key(|s| s.addr);
-    // One node per address (the first symbol's size and kind, as before), keeping the names of
-    // the others: `dedup_by` passes the later element first and drops it.
-    syms.dedup_by(|later, kept| {
-        let same = later.addr == kept.addr;
-        if same {
-            kept.names.append(&mut later.names);
-        }
-        same
-    });
-    let find = |a: u64| -> Option<usize> {
-        let i = syms.partition_point(|s| s.addr <= a);
-        (i > 0 && a < syms[i - 1].addr + syms[i - 1].size).then(|| i - 1)
-    };
-    let bytes_at = |addr: u64, size: u64| -> Option<Vec<u8>> {
-        file.sections().find_map(|sec| {
-            let (start, len) = (sec.address(), sec.size());
-            if addr >= start && addr + size <= start + len {
-                let data = sec.data().ok()?;
-                let off = (addr - start) as usize;
-                data.get(off..off + size as usize).map(<[u8]>::to_vec)
-            } else {
-                None
-            }
-        })
-    };
-    // The edges of the reference graph.
-    let mut edges: Vec<Vec<usize>> = vec![Vec::new(); syms.len()];
-    let riscv = file.architecture() == object::Architecture::Riscv32;
-    for (i, s) in syms.iter().enumerate().filter(|(_, s)| s.func) {
-        let Some(code) = bytes_at(s.addr, s.size) else {
-            continue;
-        };
-        if riscv {
-            // A function is reached at its start; a constant object anywhere within it.
-            for a in riscv_refs::refs(s.addr, &code) {
-                let hit = find(a).filter(|&t| !syms[t].func || syms[t].addr == a);
-                if let Some(t) = hit.filter(|&t| t != i && !edges[i].contains(&t)) {
-                    edges[i].push(t);
-                }
-            }
-            continue;
-        }
-        let hw = |k: usize| u32::from(u16::from_le_bytes([code[k], code[k + 1]]));
-        let mut k = 0;
-        while k + 1 < code.len() {
-            let h1 = hw(k);
-            if h1 >> 11 >= 0b11101 && k + 3 < code.len() {
-                let h2 = hw(k + 2);
-                let pc = s.addr + k as u64 + 4;
-                let s_bit = (h1 >> 10) & 1;
-                let (j1, j2) = ((h2 >> 13) & 1, (h2 >> 11) & 1);
-                let target = if h1 >> 11 == 0b11110 && h2 & 0x9000 == 0x9000 {
-                    // BL / B.W (T4): S:I1:I2:imm10:imm11:0, I = NOT(J XOR S).
-                    let i1 = !(j1 ^ s_bit) & 1;
-                    let i2 = !(j2 ^ s_bit) & 1;
-                    let imm = (s_bit << 24)
-                        | (i1 << 23)
-                        | (i2 << 22)
-                        | ((h1 & 0x3FF) << 12)
-                        | ((h2 & 0x7FF) << 1);
-                    Some(((imm << 7) as i32 >> 7) as i64)
-                } else if h1 >> 11 == 0b11110 && h2 & 0xD000 == 0x8000 && (h1 >> 6) & 0xE != 0xE {
-                    // B<cond>.W (T3): S:J2:J1:imm6:imm11:0.
-                    let imm = (s_bit << 20)
-                        | (j2 << 19)
-                        | (j1 << 18)
-                        | ((h1 & 0x3F) << 12)
-                        | ((h2 & 0x7FF) << 1);
-                    Some(((imm << 11) as i32 >> 11) as i64)
-                } else {
-                    None
-                };
-                if let Some(t) = target.and_then(|o| find((pc as i64 + o) as u64)) {
-                    if t != i {
-                        edges[i].push(t);
-                    }
-                }
-                k += 4;
-            } else {
-                k += 2;
-            }
-        }
-        // Literal-pool words pointing at a function (odd: Thumb) or into a constant object.
-        for w in code
-            .chunks_exact(4)
-            .map(|c| u64::from(u32::from_le_bytes([c[0], c[1], c[2], c[3]])))
-        {
-            let hit = if w & 1 == 1 {
-                find(w & !1).filter(|&t| syms[t].func && syms[t].addr == w & !1)
-            } else {
-                find(w).filter(|&t| !syms[t].func)
-            };
-            if let Some(t) = hit.filter(|&t| t != i) {
-                edges[i].push(t);
-            }
-        }
-    }
-    let mut out = HashMap::new();
-    for (i, s) in syms.iter().enumerate() {
-        let kernels: Vec<&String> = s
-            .names
-            .iter()
-            .filter(|n| n.contains("::cases::k_") || n.contains("::points::s_"))
-            .collect();
-        if kernels.is_empty() {
-            continue;
-        }
-        let mut seen = HashSet::from([i]);
-        let mut stack = vec![i];
-        while let Some(j) = stack.pop() {
-            for &t in &edges[j] {
-                if seen.insert(t) {
-                    stack.push(t);
-                }
-            }
-        }
-        let size: u64 = seen.iter().map(|&j| syms[j].size).sum();
-        for name in kernels {
-            out.insert(name.clone(), size);
-        }
-    }
-    Ok(out)
-}
-
-/// The kernel symbol of `model` for the backend whose type is `ty`.
-fn kernel_symbol(sizes: &HashMap<String, u64>, model: &str, ty: &str) -> Option<u64> {
-    let key = format!("::cases::k_{model}::<");
-    sizes.iter().find_map(|(name, &size)| {
-        let rest = name.split_once(&key)?.1;
-        let arg = rest.strip_suffix('>')?;
-        (arg == ty || arg.ends_with(&format!("::{ty}"))).then_some(size)
-    })
 }
 
 /// The kernel of `model` for the backend `name` when it has no symbol of its own: LLVM merges
