@@ -274,7 +274,8 @@ impl<T: Real> ParallelogramLight<T> {
     /// <!-- BEGIN acc-rect_phong_peak: target/accuracy/model-rect_phong_peak.md -->
     /// Measured: f64 within 7.0e-10 of its reference (brute force, m = 2^16, 2^20); against f64,
     /// f32 2.9e-7 (ill-conditioned: 4.7e-6; near boundary: 4.5e-7), Fast32 3.8e-6
-    /// (ill-conditioned: 4.3e-6; near boundary: 6.4e-7); 7 730 cases in all (`docs/accuracy.md`).
+    /// (ill-conditioned: 4.3e-6; near boundary: 6.4e-7), Fixed22 9.4e-5 at m = 255; 11 294 cases
+    /// in all (`docs/accuracy.md`).
     /// <!-- END acc-rect_phong_peak -->
     #[inline]
     pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
