@@ -383,15 +383,21 @@ impl Real for Fixed22 {
     /// The default's body, with the rescaling by its `m` (the largest component by
     /// construction: no test of the components needed).
     #[inline(always)]
+    ///
+    /// The squares and the three scalings by `1/|v|` use `mul_bits_small`: after the
+    /// rescaling every component is at most 2 (`rescale_by_top`) and `1/|v|` at most 2 (the
+    /// largest component is at least 1/2), so the exact product needs no saturation test and
+    /// the sum of squares (at most 12) none either: the same bits as `*` and `+`, about 100
+    /// fewer Cortex-M0 instructions a call.
     fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
         let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
         if m <= Self::TINY {
             return None;
         }
         let ([x, y, z], d) = rescale_by_top(v, m.to_bits() as u32);
-        let s2 = x * x + y * y + z * z;
-        let (len, inv) = s2.sqrt_rsqrt();
-        Some(([x * inv, y * inv, z * inv], len * d))
+        let (len, inv) = unit_scale(x, y, z).sqrt_rsqrt();
+        let s = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
+        Some(([s(x), s(y), s(z)], len * d))
     }
     /// The default's body, with the rescaling by its `m` (see `normalize3`).
     #[inline(always)]
@@ -401,9 +407,9 @@ impl Real for Fixed22 {
             return None;
         }
         let ([x, y, z], _) = rescale_by_top(v, m.to_bits() as u32);
-        let s2 = x * x + y * y + z * z;
-        let r = s2.rsqrt();
-        Some([x * r, y * r, z * r])
+        let r = unit_scale(x, y, z).rsqrt();
+        let s = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), r.to_bits()));
+        Some([s(x), s(y), s(z)])
     }
     #[inline(always)]
     fn is_nan_like(self) -> bool {
@@ -441,6 +447,15 @@ impl Real for Fixed22 {
     }
 }
 
+/// `x^2 + y^2 + z^2` of components of at most 2 in magnitude (what `rescale_by_top` leaves):
+/// each square by `mul_bits_small`, the sum (at most 12) without saturation tests; the same
+/// bits as `x * x + y * y + z * z`.
+#[inline(always)]
+fn unit_scale(x: Fixed22, y: Fixed22, z: Fixed22) -> Fixed22 {
+    let sq = |c: Fixed22| mul_bits_small(c.to_bits(), c.to_bits());
+    Fixed22::from_bits(sq(x) + sq(y) + sq(z))
+}
+
 /// `v` scaled by the power of two that brings `top`'s highest set bit (a bound on every
 /// component's magnitude in raw bits: no component's bits reach above it) to bit 21 (bit 22
 /// for bits 30 and 31, the shift right being limited to 8), and that power of two; `(v, 1)`
@@ -458,4 +473,47 @@ fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
         v.map(|x| Fixed22::from_bits(x.to_bits() >> -k))
     };
     (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
+    /// `|a|, |b| <= 2^23` on a stride plus the edges, and the normalizations of 200 000 random
+    /// vectors of every magnitude against the same formula in the type's own `*` and `+`.
+    #[test]
+    fn small_products_and_normalizations_are_bit_identical() {
+        let lim = 1i32 << 23;
+        let edges = [-lim, -lim + 1, -1, 0, 1, 0xFFFF, 0x10000, lim - 1, lim];
+        let mut a = -lim;
+        while a <= lim {
+            for &b in edges.iter().chain([a / 3, -a / 7, 12_345].iter()) {
+                assert_eq!(mul_bits_small(a, b), mul_bits(a, b), "{a} * {b}");
+                assert_eq!(mul_bits_small(b, a), mul_bits(b, a), "{b} * {a}");
+            }
+            a += 997;
+        }
+        let mut x = 0x2545_F491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        for _ in 0..200_000 {
+            let shift = next() % 31;
+            let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
+            let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+            let want = if m <= Fixed22::TINY {
+                None
+            } else {
+                let ([x, y, z], d) = rescale_by_top(v, m.to_bits() as u32);
+                let (len, inv) = (x * x + y * y + z * z).sqrt_rsqrt();
+                Some(([x * inv, y * inv, z * inv], len * d))
+            };
+            assert_eq!(Fixed22::normalize3(v), want, "{v:?}");
+            assert_eq!(Fixed22::unit3(v), want.map(|(u, _)| u), "{v:?}");
+        }
+    }
 }
