@@ -34,7 +34,7 @@
 //! (slopes `dE/dc = E'(w)/(-sin w)`): no arc cosine, and a smaller error for `sigma <= pi/4`.
 
 use crate::unit::Direction;
-use crate::{Error, Real, Vec3};
+use crate::{Error, Real, UnitVec3, Vec3};
 
 /// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma`, `ss = sin sigma`.
 #[inline]
@@ -150,7 +150,7 @@ impl<T: Real> HermiteFilletCos<T> {
 /// angular size, e.g. the sun).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CapLight<T> {
-    axis: Vec3<T>,
+    axis: UnitVec3<T>,
     sigma: T,
     cos_sigma: T,
     sin_sigma: T,
@@ -167,7 +167,7 @@ impl<T: Real> CapLight<T> {
     /// [`Error::NotFinite`] / [`Error::ZeroLength`] for `axis`; [`Error::NotFinite`] or
     /// [`Error::SigmaOutOfRange`] for `sigma`.
     pub fn new(axis: Vec3<T>, sigma: T) -> Result<Self, Error> {
-        let axis = axis.try_normalize("axis")?;
+        let axis = UnitVec3::try_new(axis, "axis")?;
         if !sigma.is_finite() {
             return Err(Error::NotFinite("sigma"));
         }
@@ -187,6 +187,12 @@ impl<T: Real> CapLight<T> {
 
     /// The unit axis.
     pub fn axis(&self) -> Vec3<T> {
+        self.axis.into_inner()
+    }
+    /// The unit axis, typed (for the Phong integrals).
+    #[inline(always)]
+    #[cfg(feature = "phong")]
+    pub(crate) fn unit_axis(&self) -> UnitVec3<T> {
         self.axis
     }
     /// The half-angle sigma.
@@ -213,7 +219,7 @@ impl<T: Real> CapLight<T> {
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => cap_lambert_from_cos(n.dot(self.axis), self.cos_sigma, self.sin_sigma),
+            Some(n) => cap_lambert_from_cos(n.dot_unit(self.axis), self.cos_sigma, self.sin_sigma),
             None => T::ZERO,
         }
     }
@@ -243,7 +249,7 @@ impl<T: Real> CapLight<T> {
         match n.to_unit() {
             Some(n) => self
                 .hermite_cos
-                .eval(n.dot(self.axis).clamp(-T::ONE, T::ONE)),
+                .eval(n.dot_unit(self.axis).clamp(-T::ONE, T::ONE)),
             None => T::ZERO,
         }
     }
@@ -276,7 +282,7 @@ pub struct SphereLight<T> {
 
 /// Per-sample cap of a sphere seen from `p`: `(axis, cos sigma, sin sigma)`.
 pub(crate) struct SphereCap<T> {
-    pub(crate) axis: Vec3<T>,
+    pub(crate) axis: UnitVec3<T>,
     pub(crate) cs: T,
     pub(crate) ss: T,
 }
@@ -328,7 +334,11 @@ impl<T: Real> SphereLight<T> {
         // cos sigma from (d - r)(d + r), not from 1 - ss^2: near the sphere ss is close to 1
         // and 1 - ss would keep only the rounding of r/d.
         let cs = (((d - self.radius) * (d + self.radius)).sqrt() * inv_d).clamp01();
-        Ok(SphereCap { axis, cs, ss })
+        Ok(SphereCap {
+            axis: UnitVec3::new_unchecked(axis),
+            cs,
+            ss,
+        })
     }
 
     /// `[sphere_lambert]` with precise errors: see [`SphereLight::lambert`].
@@ -338,8 +348,8 @@ impl<T: Real> SphereLight<T> {
     /// [`Error::PointInsideSphere`].
     pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let n = n.try_unit("n")?.into_inner();
-        Ok(cap_lambert_from_cos(n.dot(cap.axis), cap.cs, cap.ss))
+        let n = n.try_unit("n")?;
+        Ok(cap_lambert_from_cos(n.dot_unit(cap.axis), cap.cs, cap.ss))
     }
 
     /// `[sphere_lambert]`: exact Lambertian irradiance at `p` with normal `n`, normalized.
@@ -364,7 +374,7 @@ impl<T: Real> SphereLight<T> {
     /// As [`SphereLight::try_lambert`].
     pub fn try_lambert_hermite(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let n = n.try_unit("n")?.into_inner();
+        let n = n.try_unit("n")?;
         let sigma = cap.ss.atan2(cap.cs);
         let (c, _, w) = crate::vec3::angle_to(n, cap.axis).ok_or(Error::ZeroLength("n"))?;
         Ok(HermiteFillet::new(sigma, cap.cs, cap.ss).eval(c, w))

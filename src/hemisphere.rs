@@ -15,13 +15,13 @@
 
 use crate::unit::Direction;
 use crate::vec3::angle_to;
-use crate::{Error, Real, Rgb, Vec3};
+use crate::{Error, Real, Rgb, UnitVec3, Vec3};
 
 /// An infinite hemisphere light around `axis` (the zenith) of unit radiance, constant or
 /// cosine weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HemisphereLight<T> {
-    axis: Vec3<T>,
+    axis: UnitVec3<T>,
 }
 
 impl<T: Real> HemisphereLight<T> {
@@ -31,12 +31,18 @@ impl<T: Real> HemisphereLight<T> {
     /// [`Error::NotFinite`] or [`Error::ZeroLength`] for a bad `axis`.
     pub fn new(axis: Vec3<T>) -> Result<Self, Error> {
         Ok(HemisphereLight {
-            axis: axis.try_normalize("axis")?,
+            axis: UnitVec3::try_new(axis, "axis")?,
         })
     }
 
     /// The unit axis.
     pub fn axis(&self) -> Vec3<T> {
+        self.axis.into_inner()
+    }
+    /// The unit axis, typed (for the Phong integrals).
+    #[inline(always)]
+    #[cfg(feature = "phong")]
+    pub(crate) fn unit_axis(&self) -> UnitVec3<T> {
         self.axis
     }
 
@@ -55,7 +61,7 @@ impl<T: Real> HemisphereLight<T> {
     #[inline]
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => (T::HALF * (T::ONE + n.dot(self.axis))).clamp01(),
+            Some(n) => (T::HALF * (T::ONE + n.dot_unit(self.axis))).clamp01(),
             None => T::ZERO,
         }
     }
@@ -112,7 +118,7 @@ impl<T: Real> OvercastSky<T> {
 
     /// The unit zenith direction.
     pub fn zenith(&self) -> Vec3<T> {
-        self.sky.axis
+        self.sky.axis.into_inner()
     }
     /// The zenith luminance `C`.
     pub fn zenith_luminance(&self) -> T {
@@ -146,7 +152,7 @@ impl<T: Real> OvercastSky<T> {
 /// (June section 20.2, eq. 20.7).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkyGround<T> {
-    up: Vec3<T>,
+    up: UnitVec3<T>,
     sky: Rgb<T>,
     ground: Rgb<T>,
 }
@@ -158,7 +164,7 @@ impl<T: Real> SkyGround<T> {
     /// [`Error::NotFinite`] / [`Error::ZeroLength`] for `up`; [`Error::NotFinite`] for a colour.
     pub fn new(up: Vec3<T>, sky: Rgb<T>, ground: Rgb<T>) -> Result<Self, Error> {
         Ok(SkyGround {
-            up: up.try_normalize("up")?,
+            up: UnitVec3::try_new(up, "up")?,
             sky: sky.check_finite("sky")?,
             ground: ground.check_finite("ground")?,
         })
@@ -166,7 +172,7 @@ impl<T: Real> SkyGround<T> {
 
     /// The unit up direction.
     pub fn up(&self) -> Vec3<T> {
-        self.up
+        self.up.into_inner()
     }
     /// The sky radiance (the hemisphere around `up`).
     pub fn sky(&self) -> Rgb<T> {
@@ -193,7 +199,7 @@ impl<T: Real> SkyGround<T> {
     pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
         match n.to_unit() {
             Some(n) => {
-                let a = (T::HALF * (T::ONE + n.dot(self.up))).clamp01();
+                let a = (T::HALF * (T::ONE + n.dot_unit(self.up))).clamp01();
                 let b = T::ONE - a;
                 self.sky.scale(a).add(self.ground.scale(b)).finite_or_zero()
             }

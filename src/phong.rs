@@ -55,6 +55,7 @@
 //! `c^2 + s^2 = 1`; `f = 1 - (r.G)^2`), which cut the m = 255 error three-fold. The README
 //! tabulates the measured errors.
 
+#[cfg(feature = "cap")]
 use crate::cap::{CapLight, SphereLight};
 #[cfg(feature = "hemisphere")]
 use crate::hemisphere::HemisphereLight;
@@ -66,14 +67,16 @@ use crate::polygon::{
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
-#[cfg(feature = "cap")]
+#[cfg(any(feature = "cap", feature = "hemisphere", feature = "polygon"))]
 use crate::unit::Direction;
 #[cfg(any(feature = "cap", feature = "hemisphere"))]
 use crate::vec3::cos_sin_between;
 #[cfg(any(feature = "cap", feature = "polygon"))]
 use crate::Error;
 #[cfg(any(feature = "cap", feature = "hemisphere", feature = "polygon"))]
-use crate::{Real, Vec3};
+use crate::Real;
+#[cfg(any(feature = "cap", feature = "polygon"))]
+use crate::Vec3;
 
 #[cfg(feature = "hemisphere")]
 impl<T: Real> HemisphereLight<T> {
@@ -94,7 +97,7 @@ impl<T: Real> HemisphereLight<T> {
         let Some(r) = r.to_unit() else {
             return T::ZERO;
         };
-        let (c, s) = cos_sin_between(*r, self.axis());
+        let (c, s) = cos_sin_between(r, self.unit_axis());
         let m = lobe.m;
         // x only matters for even m (S starts from S(0, x) = x).
         let w = if m & 1 == 0 { s.atan2(c) } else { T::ZERO };
@@ -123,7 +126,7 @@ impl<T: Real> HemisphereLight<T> {
         let Some(r) = r.to_unit() else {
             return T::ZERO;
         };
-        let (c, s) = cos_sin_between(*r, self.axis());
+        let (c, s) = cos_sin_between(r, self.unit_axis());
         let m = lobe.m;
         let k = m + 1;
         let w = if k & 1 == 0 { s.atan2(c) } else { T::ZERO };
@@ -270,7 +273,7 @@ impl<T: Real> CapLight<T> {
             return T::ZERO;
         };
         let (cs, ss) = self.cos_sin_sigma();
-        let (c, s) = cos_sin_between(*r, self.axis());
+        let (c, s) = cos_sin_between(r, self.unit_axis());
         phong_cap_from_angle(lobe.m, c, s, cs, ss)
     }
 }
@@ -289,7 +292,7 @@ impl<T: Real> SphereLight<T> {
         r: impl Direction<T>,
     ) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let r = r.try_unit("r")?.into_inner();
+        let r = r.try_unit("r")?;
         let (c, s) = cos_sin_between(r, cap.axis);
         Ok(phong_cap_from_angle(lobe.m, c, s, cap.cs, cap.ss))
     }

@@ -28,13 +28,42 @@ pub mod hw;
 #[cfg(feature = "fixed")]
 pub use fixed22::Fixed22;
 
-mod sealed {
-    pub trait Sealed {}
+/// The seal of [`Real`], and the crate-internal arithmetic that only the crate may call: its
+/// preconditions are kept by the crate's types (a [`UnitVec3`](crate::UnitVec3) is unit), so
+/// it is not part of the public trait.
+pub(crate) mod sealed {
+    use core::ops::{Add, Mul, Sub};
+
+    pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
+        /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are at most 2 in
+        /// magnitude (unit vectors, and the cross product of two): the value of
+        /// [`Vec3::dot`](crate::Vec3::dot), bit for bit. Fixed point leaves out the saturation
+        /// tests its products and sums need elsewhere (its override); outside that range its
+        /// result is unspecified, so only [`UnitVec3`](crate::UnitVec3) calls it.
+        #[inline(always)]
+        fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
+            a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+        }
+        /// `a b` for factors of at most 2 in magnitude: the value of `*`, bit for bit (fixed
+        /// point without its saturation test).
+        #[inline(always)]
+        fn mul_small(a: Self, b: Self) -> Self {
+            a * b
+        }
+        /// The cross product under the same precondition: the value of
+        /// [`Vec3::cross`](crate::Vec3::cross), bit for bit.
+        #[inline(always)]
+        fn cross3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        }
+    }
     impl Sealed for f32 {}
     impl Sealed for f64 {}
     impl Sealed for super::Fast32 {}
-    #[cfg(feature = "fixed")]
-    impl Sealed for super::Fixed22 {}
 }
 
 /// A real-number type the models are generic over (sealed; see the module docs).

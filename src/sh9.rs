@@ -221,7 +221,7 @@ impl<T: Real> Sh9<T> {
     pub fn sphere(center: Vec3<T>, radius: T, p: Vec3<T>, colour: Rgb<T>) -> Result<Self, Error> {
         let s = crate::cap::SphereLight::new(center, radius)?;
         let cap = s.cap_at(p)?;
-        Self::disc_cos_sin(cap.axis, cap.cs, cap.ss, colour)
+        Self::disc_cos_sin(cap.axis.into_inner(), cap.cs, cap.ss, colour)
     }
 
     /// A constant hemisphere (sky) of radiance `colour` around `up`.
@@ -288,8 +288,8 @@ impl<T: Real> Sh9Irradiance<T> {
         let Some(n) = n.to_unit() else {
             return Rgb::splat(T::ZERO);
         };
-        let (x, y, z) = (n.x, n.y, n.z);
-        let m = [T::ONE, x, y, z, x * y, y * z, x * z, z * z, x * x - y * y];
+        let [xy, yz, xz, zz, xx_yy] = n.quadratic_monomials();
+        let m = [T::ONE, n.x, n.y, n.z, xy, yz, xz, zz, xx_yy];
         let ch = |f: fn(&Rgb<T>) -> T| {
             let mut s = T::ZERO;
             for (k, x) in self.k.iter().zip(m) {

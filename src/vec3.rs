@@ -1,6 +1,6 @@
 //! Three-component vectors and RGB triples over [`Real`].
 
-use crate::{Error, Real};
+use crate::{Error, Real, UnitVec3};
 use core::ops::{Add, Mul, Neg, Sub};
 
 /// A 3-vector: a point, a direction or an edge.
@@ -236,9 +236,9 @@ impl<T: Real> Rgb<T> {
 /// `c^m` of a Phong recurrence multiplies by `m`.
 #[inline]
 #[allow(dead_code)] // shared by several model families; unused when none of them is enabled
-pub(crate) fn cos_sin_between<T: Real>(d: Vec3<T>, axis: Vec3<T>) -> (T, T) {
-    let c = d.dot(axis).clamp(-T::ONE, T::ONE);
-    let s = d.cross(axis).length().min(T::ONE);
+pub(crate) fn cos_sin_between<T: Real>(d: UnitVec3<T>, axis: UnitVec3<T>) -> (T, T) {
+    let (c, s) = d.dot_and_cross_length(axis);
+    let (c, s) = (c.clamp(-T::ONE, T::ONE), s.min(T::ONE));
     if c.abs() <= s {
         (c, ((T::ONE - c) * (T::ONE + c)).sqrt())
     } else {
@@ -252,8 +252,11 @@ pub(crate) fn cos_sin_between<T: Real>(d: Vec3<T>, axis: Vec3<T>) -> (T, T) {
 /// Cost: one normalization (none for a `UnitVec3`), a cross product, 2 sqrt, 1 atan2.
 #[inline]
 #[allow(dead_code)] // shared by several model families; unused when none of them is enabled
-pub(crate) fn angle_to<T: Real>(d: impl crate::Direction<T>, axis: Vec3<T>) -> Option<(T, T, T)> {
+pub(crate) fn angle_to<T: Real>(
+    d: impl crate::Direction<T>,
+    axis: UnitVec3<T>,
+) -> Option<(T, T, T)> {
     let d = d.to_unit()?;
-    let (c, s) = cos_sin_between(*d, axis);
+    let (c, s) = cos_sin_between(d, axis);
     Some((c, s, s.atan2(c)))
 }

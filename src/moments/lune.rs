@@ -3,7 +3,7 @@
 
 use super::check_m;
 use crate::vec3::cos_sin_between;
-use crate::{Error, Real, Vec3};
+use crate::{Error, Real, UnitVec3, Vec3};
 
 /// `[lune_normalization]` with precise errors: see [`lune_normalization`].
 ///
@@ -12,8 +12,8 @@ use crate::{Error, Real, Vec3};
 /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
 pub fn try_lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> Result<T, Error> {
     check_m::<T>(m)?;
-    let w = w.try_normalize("w")?;
-    let v = v.try_normalize("v")?;
+    let w = UnitVec3::try_new(w, "w")?;
+    let v = UnitVec3::try_new(v, "v")?;
     let (d, s) = cos_sin_between(w, v);
     let half_pi_1d = T::FRAC_PI_2 * (T::ONE + d);
     if m == 0 {

@@ -93,7 +93,9 @@ fn validate_polygon_f64(
     };
     let p2 = |i: usize| {
         let d = v(i).to_f64();
-        [d[ia] / size, d[ib] / size]
+        // Indices in [0, 3) by construction (`get`: no panic path compiled).
+        let c = |k: usize| d.get(k).copied().unwrap_or(0.0);
+        [c(ia) / size, c(ib) / size]
     };
     for i in 0..n {
         let (a0, a1) = (p2(i), p2(i + 1));
