@@ -187,7 +187,7 @@ pub(super) fn raster<T, P, S>(
                 Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo)
             });
             let table = ctx.table;
-            let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
+            const SHIFT: u32 = COLOUR_FRAC - ENCODE_INDEX_BITS;
             // (Stepping the four attributes by additions instead of `row + x sx` per pixel,
             // and indexing the band's rows directly, were both measured slower on the
             // Cortex-M0+: more live values than its 8 low registers.)
@@ -207,6 +207,7 @@ pub(super) fn raster<T, P, S>(
                     return;
                 };
                 let mut x = xs as i32;
+                let mut written = px.len() as u32;
                 match dp.and_then(|d| d.get_mut(xs..=xe)) {
                     Some(dp) => {
                         for (p, d) in px.iter_mut().zip(dp.iter_mut()) {
@@ -214,11 +215,12 @@ pub(super) fn raster<T, P, S>(
                             if z < *d {
                                 *d = z;
                                 *p = table.pixel(
-                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
-                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
-                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> SHIFT,
+                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> SHIFT,
+                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> SHIFT,
                                 );
-                                stats.pixels = stats.pixels.wrapping_add(1);
+                            } else {
+                                written -= 1;
                             }
                             x += 1;
                         }
@@ -226,15 +228,15 @@ pub(super) fn raster<T, P, S>(
                     None => {
                         for p in px.iter_mut() {
                             *p = table.pixel(
-                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
-                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
-                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> SHIFT,
+                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> SHIFT,
+                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> SHIFT,
                             );
-                            stats.pixels = stats.pixels.wrapping_add(1);
                             x += 1;
                         }
                     }
                 }
+                stats.pixels = stats.pixels.wrapping_add(written);
             });
         }
         Shading::PerPixel => {
