@@ -7,7 +7,7 @@ use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
 use super::{Camera, DrawOptions, DrawStats};
-use crate::wide::mul_64;
+use crate::wide::{dot2_shr24, mul_64};
 use crate::{Real, Rgb, Vec3};
 
 /// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
@@ -74,19 +74,37 @@ struct Plane {
 
 impl Plane {
     /// The plane through the values `a` at the three vertices (edge-triangle order):
-    /// `a0 + (a1 - a0) l1 + (a2 - a0) l2` with the triangle's barycentric planes. Cost: 6
-    /// 32 x 32 -> 64-bit products.
+    /// `a0 + (a1 - a0) l1 + (a2 - a0) l2` with the triangle's barycentric planes. Cost: 3
+    /// sums of two 32 x 32 -> 64-bit products shifted ([`dot2_shr24`]) when the differences
+    /// and the weights fit an `i32` (always on a display; 6 [`mul_64`] otherwise, the same
+    /// bits).
     #[inline]
     fn new(a: [i32; 3], geo: &Geometry) -> Self {
-        let (da1, da2) = (a[1] as i64 - a[0] as i64, a[2] as i64 - a[0] as i64);
-        let mix =
-            |l1: i64, l2: i64| (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32;
-        let sx = mix(geo.l1.0, geo.l2.0);
-        let at_b = a[0].wrapping_add(mix(geo.l1.2, geo.l2.2));
+        let (da1, o1) = a[1].overflowing_sub(a[0]);
+        let (da2, o2) = a[2].overflowing_sub(a[0]);
+        let (sx, at_b, sy) = match geo.l32 {
+            Some((l1, l2)) if !o1 && !o2 => (
+                dot2_shr24(da1, l1[0], da2, l2[0]),
+                dot2_shr24(da1, l1[2], da2, l2[2]),
+                dot2_shr24(da1, l1[1], da2, l2[1]),
+            ),
+            _ => {
+                let (da1, da2) = (a[1] as i64 - a[0] as i64, a[2] as i64 - a[0] as i64);
+                let mix = |l1: i64, l2: i64| {
+                    (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32
+                };
+                (
+                    mix(geo.l1.0, geo.l2.0),
+                    mix(geo.l1.2, geo.l2.2),
+                    mix(geo.l1.1, geo.l2.1),
+                )
+            }
+        };
+        let at_b = a[0].wrapping_add(at_b);
         Plane {
             base: at_b.wrapping_sub(sx.wrapping_mul(geo.xb)),
             sx,
-            sy: mix(geo.l1.1, geo.l2.1),
+            sy,
         }
     }
     /// The value at column 0 of the row `dy` rows below the anchor row.
@@ -103,6 +121,9 @@ impl Plane {
 struct Geometry {
     l1: (i64, i64, i64),
     l2: (i64, i64, i64),
+    /// `l1` and `l2` as `[x, y, anchor]` in `i32` when all six fit (any triangle of display
+    /// size).
+    l32: Option<([i32; 3], [i32; 3])>,
     xb: i32,
 }
 
@@ -142,9 +163,18 @@ impl Geometry {
         let dx = (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as i64;
         let dy = (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as i64;
         let plane = |gx: i64, gy: i64| (gx, gy, (mul_64(gx, dx).wrapping_add(mul_64(gy, dy))) >> 4);
+        let (l1, l2) = (plane(scale(f2), scale(-e2)), plane(scale(-f1), scale(e1)));
+        let narrow = |l: (i64, i64, i64)| {
+            Some([
+                i32::try_from(l.0).ok()?,
+                i32::try_from(l.1).ok()?,
+                i32::try_from(l.2).ok()?,
+            ])
+        };
         Geometry {
-            l1: plane(scale(f2), scale(-e2)),
-            l2: plane(scale(-f1), scale(e1)),
+            l1,
+            l2,
+            l32: narrow(l1).zip(narrow(l2)),
             xb,
         }
     }
