@@ -221,8 +221,9 @@ impl EdgeTriangle {
     /// (columns `[0, width)`), with the first and last covered column: the pixels
     /// [`EdgeTriangle::for_each_covered`] visits, row by row, as spans (a triangle is convex,
     /// so a row's covered pixels are contiguous). The same exact integer tests; each row stops
-    /// at the first uncovered pixel after its span. Cost: 6 multiplications; per row 3 additions; per pixel
-    /// from the box's left edge to the span's end: 3 additions and 3 comparisons.
+    /// at the first uncovered pixel after its span. Cost: 6 multiplications; per row 4
+    /// additions and 2 multiplications; per pixel from the box's left edge to the span's end:
+    /// 2 additions and 1 comparison (only the edges that can end the walk are stepped).
     pub fn for_each_span<F: FnMut(i32, i32, i32)>(&self, width: i32, row0: i32, row1: i32, f: F) {
         let Some((x0, y0, x1, y1)) = self.pixel_bounds(width, row0, row1) else {
             return;
