@@ -129,11 +129,12 @@ struct Geometry {
 
 impl Geometry {
     /// From the snapped vertices (positive orientation), twice the area `d > 0` and the
-    /// anchor pixel. `1/d` is one 64-bit division (a 31-bit reciprocal `r` with `1/d = r
-    /// 2^-k` to 2^-30 relative), every weight a product and a shift: `dl1/dX = f2/d`,
-    /// `dl1/dY = -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with
-    /// `(e, f)` the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy`
-    /// (vertex 0 has `l1 = l2 = 0`).
+    /// anchor pixel. `1/d` is one division (a 31-bit reciprocal `r` with `1/d = r 2^-k` to
+    /// 2^-30 relative: 31 restoring steps in 32-bit integers when `d < 2^32`, a 64-bit
+    /// division beyond), every weight a product and a shift: `dl1/dX = f2/d`, `dl1/dY =
+    /// -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with `(e, f)`
+    /// the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy` (vertex 0
+    /// has `l1 = l2 = 0`).
     fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
         let off = |k: usize| {
             (
@@ -144,11 +145,17 @@ impl Geometry {
         let ((e1, f1), (e2, f2)) = (off(1), off(2));
         let d = d.max(1) as u64;
         let n = 64 - d.leading_zeros(); // d in [2^(n-1), 2^n)
-        let sh = n.saturating_sub(33);
-        let nn = n - sh; // <= 33
-        let r = ((1u64 << (nn + 30)) / (d >> sh)) as i64; // in (2^29, 2^31]
-                                                          // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
-                                                          // BARY_FRAC - n - 30).
+        let r = if n <= 32 {
+            // 2^(n + 30) / d = 2^62 / (d 2^(32 - n)): 32-bit steps (any triangle of display
+            // size; the 64-bit division is a library call on a Cortex-M0).
+            recip62((d as u32) << (32 - n)) as i64
+        } else {
+            let sh = n.saturating_sub(33);
+            let nn = n - sh; // <= 33
+            ((1u64 << (nn + 30)) / (d >> sh)) as i64 // in (2^29, 2^31]
+        };
+        // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
+        // BARY_FRAC - n - 30).
         let k = n + 30;
         let scale = |x: i64| {
             let p = mul_64(x, r);
@@ -178,6 +185,28 @@ impl Geometry {
             xb,
         }
     }
+}
+
+/// `floor(2^62 / d)` for `d` in `[2^31, 2^32)` (in `(2^30, 2^31]`): restoring division in
+/// 32-bit integers, one quotient bit per step (the dividend's top 32 bits are `2^31`, its
+/// other 31 bits zero).
+fn recip62(d: u32) -> u32 {
+    let (mut q, mut rem) = if d == 1 << 31 {
+        (1u32, 0u32)
+    } else {
+        (0, 1 << 31)
+    };
+    for _ in 0..31 {
+        // rem < d: 2 rem < 2^33, and 2 rem - d < d when it is subtracted.
+        let carry = rem >> 31;
+        rem <<= 1;
+        q <<= 1;
+        if carry != 0 || rem >= d {
+            rem = rem.wrapping_sub(d);
+            q |= 1;
+        }
+    }
+    q
 }
 
 /// Scan-converts one triangle into the band (see the [`prepared`](super::prepared) module docs).
@@ -328,4 +357,32 @@ pub(super) fn raster<T, P, S>(
 #[inline(always)]
 fn depth16(q: i32) -> u16 {
     (q >> (DEPTH_FRAC - 16)).clamp(0, u16::MAX as i32) as u16
+}
+
+#[cfg(test)]
+mod tests {
+    use super::recip62;
+
+    #[test]
+    fn the_32_bit_reciprocal_equals_the_64_bit_division() {
+        let mut x = 0x9E37_79B9u32;
+        let edge = [
+            1 << 31,
+            (1 << 31) + 1,
+            u32::MAX,
+            u32::MAX - 1,
+            0xC000_0000,
+            0xAAAA_AAAB,
+        ];
+        for d in edge {
+            assert_eq!(u64::from(recip62(d)), (1u64 << 62) / u64::from(d), "{d}");
+        }
+        for _ in 0..1_000_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let d = x | (1 << 31);
+            assert_eq!(u64::from(recip62(d)), (1u64 << 62) / u64::from(d), "{d}");
+        }
+    }
 }
