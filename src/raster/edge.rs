@@ -236,15 +236,24 @@ impl EdgeTriangle {
         let hi = |a: i32, b: i32, c: i32| a.max(b).max(c);
         let small = hi(v[0].x, v[1].x, v[2].x) - lo(v[0].x, v[1].x, v[2].x) < 1024 * SUBPIXEL
             && hi(v[0].y, v[1].y, v[2].y) - lo(v[0].y, v[1].y, v[2].y) < 1024 * SUBPIXEL;
+        let p = FixedPoint::pixel_centre(x0, y0);
         if small {
-            self.scan::<i32, F>((x0, y0, x1, y1), f);
+            // The box's first pixel centre lies within the vertices' range, so every
+            // difference below is under 2^14 + 8 in magnitude: the edge functions there in
+            // plain i32 products (exact: below 2^29), not 32 x 32 -> 64-bit ones.
+            let start = core::array::from_fn(|k| {
+                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+                i64::from((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x))
+            });
+            self.scan::<i32, F>((x0, y0, x1, y1), start, f);
         } else {
-            self.scan::<i64, F>((x0, y0, x1, y1), f);
+            self.scan::<i64, F>((x0, y0, x1, y1), self.weights_at(p), f);
         }
     }
 
     /// The span loop of [`EdgeTriangle::for_each_span`] over the pixel box `(x0, y0, x1, y1)`
-    /// in integers `E` (which must hold every edge value over the box). (Walking each end of
+    /// in integers `E` (which must hold every edge value over the box), from the edge
+    /// functions `start` at its first pixel. (Walking each end of
     /// the span from its place in the row above instead was measured slower on the demo's
     /// small triangles: their boxes are a few pixels wide.)
     ///
@@ -260,13 +269,13 @@ impl EdgeTriangle {
     fn scan<E: EdgeInt, F: FnMut(i32, i32, i32)>(
         &self,
         (x0, y0, x1, y1): (i32, i32, i32, i32),
+        start: [i64; 3],
         mut f: F,
     ) {
         let v = self.v;
         // Per edge k: d/dx (one pixel = SUBPIXEL units) -(b.y - a.y) SUBPIXEL, d/dy
         // (b.x - a.x) SUBPIXEL; rows are stepped exactly (integer additions) from the first.
         let zero = E::from_i64(0);
-        let start = self.weights_at(FixedPoint::pixel_centre(x0, y0));
         // (edge value + bias at the box's first pixel, per pixel in x, per row) of the left
         // and right edges.
         let mut left = [(zero, zero, zero); 2];
