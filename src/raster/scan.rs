@@ -191,20 +191,18 @@ impl Geometry {
 /// 32-bit integers, one quotient bit per step (the dividend's top 32 bits are `2^31`, its
 /// other 31 bits zero).
 fn recip62(d: u32) -> u32 {
+    // With rem < d, 2 rem >= d exactly when rem >= ceil(d / 2) = h, and then 2 rem - d =
+    // rem - (d - rem) (no 32-bit overflow either way).
+    let h = d - d / 2;
     let (mut q, mut rem) = if d == 1 << 31 {
         (1u32, 0u32)
     } else {
         (0, 1 << 31)
     };
     for _ in 0..31 {
-        // rem < d: 2 rem < 2^33, and 2 rem - d < d when it is subtracted.
-        let carry = rem >> 31;
-        rem <<= 1;
-        q <<= 1;
-        if carry != 0 || rem >= d {
-            rem = rem.wrapping_sub(d);
-            q |= 1;
-        }
+        let bit = u32::from(rem >= h);
+        rem = if bit != 0 { rem - (d - rem) } else { rem + rem };
+        q = q + q + bit;
     }
     q
 }
