@@ -7,7 +7,7 @@ use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
 use super::{Camera, DrawOptions, DrawStats};
-use crate::wide::{dot2_shr24, mul_64};
+use crate::wide::{dot2_shr24, mul_32, mul_64};
 use crate::{Real, Rgb, Vec3};
 
 /// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
@@ -136,6 +136,57 @@ impl Geometry {
     /// the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy` (vertex 0
     /// has `l1 = l2 = 0`).
     fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
+        Self::new_small(fp, d, xb, yb).unwrap_or_else(|| Self::new_wide(fp, d, xb, yb))
+    }
+
+    /// [`Geometry::new`] in 32-bit integers (no 64-bit shift or library call on a Cortex-M0)
+    /// for a triangle whose vertex offsets are under 2^15 sub-pixels (any of display size):
+    /// the same values, or `None` when one does not fit an `i32` (then
+    /// [`Geometry::new_wide`]). With `d < 2^31` and `r = rh 2^16 + rl`, each weight `floor(x
+    /// r / 2^s)` is put together from `x rh` and `x rl` (both fit an `i32`).
+    fn new_small(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Option<Self> {
+        // Coordinates within MAX_COORD: the differences fit an i32.
+        let off = |k: usize| (fp[k].x.wrapping_sub(fp[0].x), fp[k].y.wrapping_sub(fp[0].y));
+        let ((e1, f1), (e2, f2)) = (off(1), off(2));
+        if [e1, f1, e2, f2].iter().any(|c| c.unsigned_abs() >= 1 << 15) {
+            return None;
+        }
+        let d = u32::try_from(d).ok().filter(|&d| d > 0)?; // |e1 f2 - e2 f1| < 2^31
+        let n = 32 - d.leading_zeros(); // d in [2^(n-1), 2^n)
+        let r = recip62(d << (32 - n)); // 2^(n + 30) / d, in (2^30, 2^31]
+                                        // Per pixel with BARY_FRAC bits: floor(x r / 2^s), s = n + 30 - 4 - BARY_FRAC.
+        let s = n + 26 - BARY_FRAC;
+        let (rh, rl) = ((r >> 16) as i32, (r & 0xFFFF) as i32); // rh <= 2^15
+        let scale = |x: i32| {
+            // |x| < 2^15: |x rh| < 2^30, |x rl| < 2^31.
+            let (a, b) = (x * rh, x * rl);
+            if s >= 16 {
+                Some((a + (b >> 16)) >> (s - 16))
+            } else {
+                // a 2^(16 - s) and floor(b / 2^s) have the sign of x: an overflow of the
+                // first means the sum does not fit either.
+                a.checked_mul(1 << (16 - s))?.checked_add(b >> s)
+            }
+        };
+        let dx = xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x;
+        let dy = yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y;
+        // Products below 2^56, their sum exact in an i64.
+        let anchor = |gx: i32, gy: i32| i32::try_from((mul_32(gx, dx) + mul_32(gy, dy)) >> 4).ok();
+        let (g1x, g1y) = (scale(f2)?, scale(-e2)?);
+        let (g2x, g2y) = (scale(-f1)?, scale(e1)?);
+        let l1 = [g1x, g1y, anchor(g1x, g1y)?];
+        let l2 = [g2x, g2y, anchor(g2x, g2y)?];
+        let wide = |l: [i32; 3]| (l[0] as i64, l[1] as i64, l[2] as i64);
+        Some(Geometry {
+            l1: wide(l1),
+            l2: wide(l2),
+            l32: Some((l1, l2)),
+            xb,
+        })
+    }
+
+    /// [`Geometry::new`] in 64-bit integers (any triangle within `MAX_COORD`).
+    fn new_wide(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
         let off = |k: usize| {
             (
                 fp[k].x as i64 - fp[0].x as i64,
@@ -359,7 +410,51 @@ fn depth16(q: i32) -> u16 {
 
 #[cfg(test)]
 mod tests {
-    use super::recip62;
+    use super::{recip62, Geometry};
+    use crate::raster::edge::{Cull, EdgeTriangle, FixedPoint, SUBPIXEL};
+
+    #[test]
+    fn the_32_bit_geometry_equals_the_64_bit_one() {
+        let mut x = 0x2545_F491u32;
+        let mut next = |m: u32| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x % m
+        };
+        let (mut small, mut total) = (0, 0);
+        for case in 0..200_000u32 {
+            let span = [8, 64, 600, 5_000, 40_000, 70_000][case as usize % 6];
+            let mut p = || {
+                FixedPoint::new(
+                    next(span) as i32 - next(span / 2 + 1) as i32,
+                    next(span) as i32 - next(span / 2 + 1) as i32,
+                )
+            };
+            let v = [p(), p(), p()];
+            let Some(t) = EdgeTriangle::new(v, Cull::None) else {
+                continue;
+            };
+            let fp = t.vertices();
+            let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
+            let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
+            let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+            let wide = Geometry::new_wide(fp, t.area2(), xb, yb);
+            total += 1;
+            if let Some(g) = Geometry::new_small(fp, t.area2(), xb, yb) {
+                small += 1;
+                assert_eq!((g.l1, g.l2, g.l32), (wide.l1, wide.l2, wide.l32), "{v:?}");
+            } else {
+                // Only when a weight does not fit (or the offsets are too large).
+                let big = fp.iter().any(|q| {
+                    (q.x - fp[0].x).unsigned_abs() >= 1 << 15
+                        || (q.y - fp[0].y).unsigned_abs() >= 1 << 15
+                });
+                assert!(big || wide.l32.is_none(), "{v:?}");
+            }
+        }
+        assert!(small > total / 2 && total > 150_000, "{small} of {total}");
+    }
 
     #[test]
     fn the_32_bit_reciprocal_equals_the_64_bit_division() {
