@@ -164,8 +164,12 @@ impl Geometry {
                 Some((a + (b >> 16)) >> (s - 16))
             } else {
                 // a 2^(16 - s) and floor(b / 2^s) have the sign of x: an overflow of the
-                // first means the sum does not fit either.
-                a.checked_mul(1 << (16 - s))?.checked_add(b >> s)
+                // first (the shift does not come back) means the sum does not fit either.
+                let up = a << (16 - s);
+                if up >> (16 - s) != a {
+                    return None;
+                }
+                up.checked_add(b >> s)
             }
         };
         let dx = xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x;
