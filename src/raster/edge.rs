@@ -87,6 +87,24 @@ fn edge_in_range(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> i64 {
         - mul_32(b.y.wrapping_sub(a.y), p.x.wrapping_sub(a.x))
 }
 
+/// [`edge_in_range`] in plain `i32` products when the four differences are under 2^15 (any
+/// triangle of display size: the products below 2^30, their difference below 2^31), its
+/// 32 x 32 -> 64-bit products otherwise. The same value.
+#[inline(always)]
+pub(super) fn edge_small_or_in_range(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> i64 {
+    let d = [
+        b.x.wrapping_sub(a.x),
+        p.y.wrapping_sub(a.y),
+        b.y.wrapping_sub(a.y),
+        p.x.wrapping_sub(a.x),
+    ];
+    if d.iter().all(|c| c.unsigned_abs() < 1 << 15) {
+        i64::from(d[0] * d[1] - d[2] * d[3])
+    } else {
+        edge_in_range(a, b, p)
+    }
+}
+
 /// Which faces to skip.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -127,7 +145,7 @@ impl EdgeTriangle {
         {
             return None;
         }
-        let area = edge_in_range(v[0], v[1], v[2]);
+        let area = edge_small_or_in_range(v[0], v[1], v[2]);
         if area == 0 {
             return None;
         }

@@ -49,7 +49,7 @@
 //! weights); per covered pixel: Gouraud about 20 integer operations, per pixel the shader, one
 //! division and one normalization in `T`.
 
-use super::edge::{FixedPoint, SUBPIXEL};
+use super::edge::{edge_small_or_in_range, FixedPoint, SUBPIXEL};
 use super::scan::{colour_bits, raster, Context, ScreenVertex, COLOUR_FRAC, DEPTH_FRAC};
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat};
@@ -57,7 +57,6 @@ use super::{
     clip_polygon, plane_distances, Affine, Camera, ClipVert, DrawOptions, DrawStats, Mesh,
     RasterError, MAX_CLIPPED,
 };
-use crate::wide::mul_32;
 use crate::{Real, Rgb, Vec3};
 
 /// Vertex flags.
@@ -546,8 +545,7 @@ fn corners<'v, T>(
 /// far inside `i32` products.
 #[inline]
 fn faces(v: &[FixedPoint; 3], cull: super::Cull) -> bool {
-    let area = mul_32(v[1].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y))
-        - mul_32(v[1].y.wrapping_sub(v[0].y), v[2].x.wrapping_sub(v[0].x));
+    let area = edge_small_or_in_range(v[0], v[1], v[2]);
     area < 0 || (area > 0 && cull == super::Cull::None)
 }
 
