@@ -78,7 +78,7 @@ impl Plane {
     /// sums of two 32 x 32 -> 64-bit products shifted ([`dot2_shr24`]) when the differences
     /// and the weights fit an `i32` (always on a display; 6 [`mul_64`] otherwise, the same
     /// bits).
-    #[inline]
+    #[inline(always)]
     fn new(a: [i32; 3], geo: &Geometry) -> Self {
         let (da1, o1) = a[1].overflowing_sub(a[0]);
         let (da2, o2) = a[2].overflowing_sub(a[0]);
