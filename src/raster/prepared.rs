@@ -17,7 +17,9 @@
 //!    ([`EdgeTriangle`](super::EdgeTriangle): the same exact coverage as
 //!    [`draw`](super::draw)), then every attribute as a plane
 //!    `a(x, y) = a_b + (x - x_b) s_x + (y - y_b) s_y` in integers: one setup per triangle
-//!    (its gradients in `f32`, from exact `i64` numerators), then per covered pixel one
+//!    (its barycentric gradients from one integer reciprocal of its area, then per attribute
+//!    a few products; all in 32-bit integers for a triangle of display size, exactly as the
+//!    64-bit fallback), then per covered pixel one
 //!    multiply-add per attribute, a depth compare, and (Gouraud) three loads from an
 //!    [`EncodeTable`]. No division and no `T` arithmetic per pixel in Gouraud mode.
 //!
