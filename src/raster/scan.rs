@@ -302,7 +302,10 @@ pub(super) fn raster<T, P, S>(
             const SHIFT: u32 = COLOUR_FRAC - ENCODE_INDEX_BITS;
             // (Stepping the four attributes by additions instead of `row + x sx` per pixel,
             // and indexing the band's rows directly, were both measured slower on the
-            // Cortex-M0+: more live values than its 8 low registers.)
+            // Cortex-M0+: more live values than its 8 low registers. So were, in the
+            // emulated demo: stepping only the depth, the slopes copied into locals (LLVM
+            // then strength-reduces and unrolls the loop, spilling), and one bounds check
+            // for the span's slices instead of the row's and the span's.)
             tri.for_each_span(width, row0, row1, |y, xs, xe| {
                 let Some((px, dp)) = band.row_mut(y as u16) else {
                     return;
