@@ -72,6 +72,49 @@ pub(crate) fn mul_64(a: i64, b: i64) -> i64 {
     }
 }
 
+/// `floor((a1 b1 + a2 b2) / 2^24)` modulo 2^32 (bits 24 to 55 of the exact sum of two
+/// 32 x 32 -> 64-bit products): on ARMv6-M from eight 16 x 16-bit products combined in 32-bit
+/// integers ([`dot2_shr24_by_halves`]: no 64-bit addition or shift), the plain 64-bit products
+/// elsewhere. The same bits on both.
+#[cfg(feature = "raster")]
+#[inline(always)]
+pub(crate) fn dot2_shr24(a1: i32, b1: i32, a2: i32, b2: i32) -> i32 {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        dot2_shr24_by_halves(a1, b1, a2, b2)
+    } else {
+        // The sum can wrap an i64 (only for two products of i32::MIN), which leaves bits
+        // 24 to 55 as they are.
+        ((i64::from(a1) * i64::from(b1)).wrapping_add(i64::from(a2) * i64::from(b2)) >> 24) as i32
+    }
+}
+
+/// [`dot2_shr24`] from 16 x 16-bit products: with each product `ah bh 2^32 + (ah bl + al bh)
+/// 2^16 + al bl`, the sum is `h 2^32 + w 2^16 + r` (the cross products split at bit 16, the
+/// low products too; `0 <= w < 6 2^16`, `0 <= r < 2^17`), and `floor(sum / 2^24) = h 2^8 +
+/// floor((w + floor(r / 2^16)) / 2^8)`.
+#[cfg(feature = "raster")]
+#[inline(always)]
+pub(crate) fn dot2_shr24_by_halves(a1: i32, b1: i32, a2: i32, b2: i32) -> i32 {
+    let halves = |x: i32| (x >> 16, x & 0xFFFF);
+    let ((a1h, a1l), (b1h, b1l)) = (halves(a1), halves(b1));
+    let ((a2h, a2l), (b2h, b2l)) = (halves(a2), halves(b2));
+    // |xh| <= 2^15 and xl < 2^16: every cross product fits an i32, the low ones a u32.
+    let m = [a1h * b1l, a1l * b1h, a2h * b2l, a2l * b2h];
+    let (ll1, ll2) = ((a1l as u32) * (b1l as u32), (a2l as u32) * (b2l as u32));
+    let h = (a1h * b1h)
+        .wrapping_add(a2h * b2h)
+        .wrapping_add(m[0] >> 16)
+        .wrapping_add(m[1] >> 16)
+        .wrapping_add(m[2] >> 16)
+        .wrapping_add(m[3] >> 16);
+    let w = ((m[0] & 0xFFFF) + (m[1] & 0xFFFF) + (m[2] & 0xFFFF) + (m[3] & 0xFFFF)) as u32
+        + (ll1 >> 16)
+        + (ll2 >> 16);
+    let r = (ll1 & 0xFFFF) + (ll2 & 0xFFFF);
+    h.wrapping_shl(8)
+        .wrapping_add(((w + (r >> 16)) >> 8) as i32)
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -118,6 +161,52 @@ mod tests {
                 assert_eq!(mul_shr_by_halves(a, b, s), exact as i32, "{a} * {b} >> {s}");
                 assert_eq!(mul_shr(a, b, s), exact as i32, "{a} * {b} >> {s}");
             }
+        }
+    }
+
+    #[cfg(feature = "raster")]
+    #[test]
+    fn dot2_shr24_by_halves_equals_the_64_bit_sum() {
+        let mut x = 0x2545_F491u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x as i32
+        };
+        let edge = [
+            0,
+            1,
+            -1,
+            0xFFFF,
+            0x10000,
+            -0x10000,
+            i32::MAX,
+            i32::MIN,
+            1 << 30,
+        ];
+        let mut quads: std::vec::Vec<[i32; 4]> = std::vec::Vec::new();
+        for &a in &edge {
+            for &b in &edge {
+                quads.push([a, b, a, b]);
+                quads.push([a, b, b, a]);
+                quads.push([a, b, -1, a]);
+            }
+        }
+        for _ in 0..200_000 {
+            let q = [next(), next(), next(), next()];
+            quads.push(q.map(|v| v >> (next() as u32 % 32)));
+            quads.push(q);
+        }
+        for [a1, b1, a2, b2] in quads {
+            let exact =
+                ((i128::from(a1) * i128::from(b1) + i128::from(a2) * i128::from(b2)) >> 24) as i32;
+            assert_eq!(
+                dot2_shr24_by_halves(a1, b1, a2, b2),
+                exact,
+                "{a1} {b1} {a2} {b2}"
+            );
+            assert_eq!(dot2_shr24(a1, b1, a2, b2), exact, "{a1} {b1} {a2} {b2}");
         }
     }
 

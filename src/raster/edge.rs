@@ -87,6 +87,24 @@ fn edge_in_range(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> i64 {
         - mul_32(b.y.wrapping_sub(a.y), p.x.wrapping_sub(a.x))
 }
 
+/// [`edge_in_range`] in plain `i32` products when the four differences are under 2^15 (any
+/// triangle of display size: the products below 2^30, their difference below 2^31), its
+/// 32 x 32 -> 64-bit products otherwise. The same value.
+#[inline(always)]
+pub(super) fn edge_small_or_in_range(a: FixedPoint, b: FixedPoint, p: FixedPoint) -> i64 {
+    let d = [
+        b.x.wrapping_sub(a.x),
+        p.y.wrapping_sub(a.y),
+        b.y.wrapping_sub(a.y),
+        p.x.wrapping_sub(a.x),
+    ];
+    if d.iter().all(|c| c.unsigned_abs() < 1 << 15) {
+        i64::from(d[0] * d[1] - d[2] * d[3])
+    } else {
+        edge_in_range(a, b, p)
+    }
+}
+
 /// Which faces to skip.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -127,7 +145,7 @@ impl EdgeTriangle {
         {
             return None;
         }
-        let area = edge_in_range(v[0], v[1], v[2]);
+        let area = edge_small_or_in_range(v[0], v[1], v[2]);
         if area == 0 {
             return None;
         }
@@ -221,8 +239,9 @@ impl EdgeTriangle {
     /// (columns `[0, width)`), with the first and last covered column: the pixels
     /// [`EdgeTriangle::for_each_covered`] visits, row by row, as spans (a triangle is convex,
     /// so a row's covered pixels are contiguous). The same exact integer tests; each row stops
-    /// at the first uncovered pixel after its span. Cost: 6 multiplications; per row 3 additions; per pixel
-    /// from the box's left edge to the span's end: 3 additions and 3 comparisons.
+    /// at the first uncovered pixel after its span. Cost: 6 multiplications; per row 4
+    /// additions and 2 multiplications; per pixel from the box's left edge to the span's end:
+    /// 2 additions and 1 comparison (only the edges that can end the walk are stepped).
     pub fn for_each_span<F: FnMut(i32, i32, i32)>(&self, width: i32, row0: i32, row1: i32, f: F) {
         let Some((x0, y0, x1, y1)) = self.pixel_bounds(width, row0, row1) else {
             return;
@@ -235,63 +254,96 @@ impl EdgeTriangle {
         let hi = |a: i32, b: i32, c: i32| a.max(b).max(c);
         let small = hi(v[0].x, v[1].x, v[2].x) - lo(v[0].x, v[1].x, v[2].x) < 1024 * SUBPIXEL
             && hi(v[0].y, v[1].y, v[2].y) - lo(v[0].y, v[1].y, v[2].y) < 1024 * SUBPIXEL;
+        let p = FixedPoint::pixel_centre(x0, y0);
         if small {
-            self.scan::<i32, F>((x0, y0, x1, y1), f);
+            // The box's first pixel centre lies within the vertices' range, so every
+            // difference below is under 2^14 + 8 in magnitude: the edge functions there in
+            // plain i32 products (exact: below 2^29), not 32 x 32 -> 64-bit ones.
+            let start = core::array::from_fn(|k| {
+                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+                i64::from((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x))
+            });
+            self.scan::<i32, F>((x0, y0, x1, y1), start, f);
         } else {
-            self.scan::<i64, F>((x0, y0, x1, y1), f);
+            self.scan::<i64, F>((x0, y0, x1, y1), self.weights_at(p), f);
         }
     }
 
     /// The span loop of [`EdgeTriangle::for_each_span`] over the pixel box `(x0, y0, x1, y1)`
-    /// in integers `E` (which must hold every edge value over the box). (Walking each end of
+    /// in integers `E` (which must hold every edge value over the box), from the edge
+    /// functions `start` at its first pixel. (Walking each end of
     /// the span from its place in the row above instead was measured slower on the demo's
     /// small triangles: their boxes are a few pixels wide.)
+    ///
+    /// The edges are split by the sign of their step along a row: a *left* edge (growing to
+    /// the right) can only end a row's run of uncovered pixels before the span, a *right* edge
+    /// (shrinking, or constant) only the span itself. A triangle of positive area has at most
+    /// two of each (the three row steps sum to zero, and two constant edges would make it
+    /// flat). Each row walks its left edges to the span's first pixel (the first where both
+    /// are >= 0), evaluates its right edges there, and walks those to the span's end: the
+    /// same pixels as testing all three edges at every pixel, with half the live values (the
+    /// Cortex-M0+ has 8 low registers). An unused slot holds an edge that is 0 everywhere.
     #[inline(always)]
     fn scan<E: EdgeInt, F: FnMut(i32, i32, i32)>(
         &self,
         (x0, y0, x1, y1): (i32, i32, i32, i32),
+        start: [i64; 3],
         mut f: F,
     ) {
         let v = self.v;
         // Per edge k: d/dx (one pixel = SUBPIXEL units) -(b.y - a.y) SUBPIXEL, d/dy
         // (b.x - a.x) SUBPIXEL; rows are stepped exactly (integer additions) from the first.
-        let step: [E; 3] = core::array::from_fn(|k| {
-            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-            E::from_i64(-(b.y as i64 - a.y as i64) * SUBPIXEL as i64)
-        });
-        let row_step: [E; 3] = core::array::from_fn(|k| {
-            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-            E::from_i64((b.x as i64 - a.x as i64) * SUBPIXEL as i64)
-        });
-        // The fill rule `e + bias >= 0` on `e + bias` itself: inside when no sign bit is set
-        // in any of the three (one OR and one comparison: fewer live registers on a Cortex-M0).
         let zero = E::from_i64(0);
-        let inside = |e: &[E; 3]| (e[0] | e[1] | e[2]) >= zero;
-        let start = self.weights_at(FixedPoint::pixel_centre(x0, y0));
-        let mut row_e: [E; 3] = core::array::from_fn(|k| E::from_i64(start[k] + self.bias[k]));
+        // (edge value + bias at the box's first pixel, per pixel in x, per row) of the left
+        // and right edges.
+        let mut left = [(zero, zero, zero); 2];
+        let mut right = [(zero, zero, zero); 2];
+        let (mut nl, mut nr) = (0usize, 0usize);
+        for k in 0..3 {
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            let step = -(b.y as i64 - a.y as i64) * SUBPIXEL as i64;
+            let edge = (
+                E::from_i64(start[k] + self.bias[k]),
+                E::from_i64(step),
+                E::from_i64((b.x as i64 - a.x as i64) * SUBPIXEL as i64),
+            );
+            let (slots, n) = if step > 0 {
+                (&mut left, &mut nl)
+            } else {
+                (&mut right, &mut nr)
+            };
+            if let Some(slot) = slots.get_mut(*n) {
+                *slot = edge;
+            }
+            *n += 1;
+        }
+        let [(mut l0, ls0, lr0), (mut l1, ls1, lr1)] = left;
+        let [(mut r0, rs0, rr0), (mut r1, rs1, rr1)] = right;
         for y in y0..=y1 {
-            let mut e = row_e;
-            for k in 0..3 {
-                row_e[k] = row_e[k] + row_step[k];
-            }
+            let (mut a, mut b) = (l0, l1);
             let mut x = x0;
-            while x <= x1 && !inside(&e) {
-                for k in 0..3 {
-                    e[k] = e[k] + step[k];
-                }
+            while x <= x1 && (a | b) < zero {
+                a = a + ls0;
+                b = b + ls1;
                 x += 1;
             }
-            if x > x1 {
-                continue;
-            }
-            let first = x;
-            while x <= x1 && inside(&e) {
-                for k in 0..3 {
-                    e[k] = e[k] + step[k];
+            if x <= x1 {
+                let first = x;
+                let dx = E::from_i64((x - x0) as i64);
+                let (mut c, mut d) = (r0 + dx * rs0, r1 + dx * rs1);
+                while x <= x1 && (c | d) >= zero {
+                    c = c + rs0;
+                    d = d + rs1;
+                    x += 1;
                 }
-                x += 1;
+                if x > first {
+                    f(y, first, x - 1);
+                }
             }
-            f(y, first, x - 1);
+            l0 = l0 + lr0;
+            l1 = l1 + lr1;
+            r0 = r0 + rr0;
+            r1 = r1 + rr1;
         }
     }
 
@@ -337,7 +389,11 @@ impl EdgeTriangle {
 /// The integers edge functions are stepped in: `i32` for triangles of display size, `i64`
 /// beyond.
 trait EdgeInt:
-    Copy + PartialOrd + core::ops::Add<Output = Self> + core::ops::BitOr<Output = Self>
+    Copy
+    + PartialOrd
+    + core::ops::Add<Output = Self>
+    + core::ops::Mul<Output = Self>
+    + core::ops::BitOr<Output = Self>
 {
     /// From an `i64` known to fit.
     fn from_i64(x: i64) -> Self;

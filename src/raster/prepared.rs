@@ -17,7 +17,9 @@
 //!    ([`EdgeTriangle`](super::EdgeTriangle): the same exact coverage as
 //!    [`draw`](super::draw)), then every attribute as a plane
 //!    `a(x, y) = a_b + (x - x_b) s_x + (y - y_b) s_y` in integers: one setup per triangle
-//!    (its gradients in `f32`, from exact `i64` numerators), then per covered pixel one
+//!    (its barycentric gradients from one integer reciprocal of its area, then per attribute
+//!    a few products; all in 32-bit integers for a triangle of display size, exactly as the
+//!    64-bit fallback), then per covered pixel one
 //!    multiply-add per attribute, a depth compare, and (Gouraud) three loads from an
 //!    [`EncodeTable`]. No division and no `T` arithmetic per pixel in Gouraud mode.
 //!
@@ -49,7 +51,7 @@
 //! weights); per covered pixel: Gouraud about 20 integer operations, per pixel the shader, one
 //! division and one normalization in `T`.
 
-use super::edge::{FixedPoint, SUBPIXEL};
+use super::edge::{edge_small_or_in_range, FixedPoint, SUBPIXEL};
 use super::scan::{colour_bits, raster, Context, ScreenVertex, COLOUR_FRAC, DEPTH_FRAC};
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat};
@@ -57,7 +59,6 @@ use super::{
     clip_polygon, plane_distances, Affine, Camera, ClipVert, DrawOptions, DrawStats, Mesh,
     RasterError, MAX_CLIPPED,
 };
-use crate::wide::mul_32;
 use crate::{Real, Rgb, Vec3};
 
 /// Vertex flags.
@@ -546,8 +547,7 @@ fn corners<'v, T>(
 /// far inside `i32` products.
 #[inline]
 fn faces(v: &[FixedPoint; 3], cull: super::Cull) -> bool {
-    let area = mul_32(v[1].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y))
-        - mul_32(v[1].y.wrapping_sub(v[0].y), v[2].x.wrapping_sub(v[0].x));
+    let area = edge_small_or_in_range(v[0], v[1], v[2]);
     area < 0 || (area > 0 && cull == super::Cull::None)
 }
 

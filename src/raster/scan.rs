@@ -7,7 +7,7 @@ use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
 use super::{Camera, DrawOptions, DrawStats};
-use crate::wide::mul_64;
+use crate::wide::{dot2_shr24, mul_32, mul_64};
 use crate::{Real, Rgb, Vec3};
 
 /// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
@@ -74,19 +74,37 @@ struct Plane {
 
 impl Plane {
     /// The plane through the values `a` at the three vertices (edge-triangle order):
-    /// `a0 + (a1 - a0) l1 + (a2 - a0) l2` with the triangle's barycentric planes. Cost: 6
-    /// 32 x 32 -> 64-bit products.
-    #[inline]
+    /// `a0 + (a1 - a0) l1 + (a2 - a0) l2` with the triangle's barycentric planes. Cost: 3
+    /// sums of two 32 x 32 -> 64-bit products shifted ([`dot2_shr24`]) when the differences
+    /// and the weights fit an `i32` (always on a display; 6 [`mul_64`] otherwise, the same
+    /// bits).
+    #[inline(always)]
     fn new(a: [i32; 3], geo: &Geometry) -> Self {
-        let (da1, da2) = (a[1] as i64 - a[0] as i64, a[2] as i64 - a[0] as i64);
-        let mix =
-            |l1: i64, l2: i64| (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32;
-        let sx = mix(geo.l1.0, geo.l2.0);
-        let at_b = a[0].wrapping_add(mix(geo.l1.2, geo.l2.2));
+        let (da1, o1) = a[1].overflowing_sub(a[0]);
+        let (da2, o2) = a[2].overflowing_sub(a[0]);
+        let (sx, at_b, sy) = match geo.l32 {
+            Some((l1, l2)) if !o1 && !o2 => (
+                dot2_shr24(da1, l1[0], da2, l2[0]),
+                dot2_shr24(da1, l1[2], da2, l2[2]),
+                dot2_shr24(da1, l1[1], da2, l2[1]),
+            ),
+            _ => {
+                let (da1, da2) = (a[1] as i64 - a[0] as i64, a[2] as i64 - a[0] as i64);
+                let mix = |l1: i64, l2: i64| {
+                    (mul_64(da1, l1).wrapping_add(mul_64(da2, l2)) >> BARY_FRAC) as i32
+                };
+                (
+                    mix(geo.l1.0, geo.l2.0),
+                    mix(geo.l1.2, geo.l2.2),
+                    mix(geo.l1.1, geo.l2.1),
+                )
+            }
+        };
+        let at_b = a[0].wrapping_add(at_b);
         Plane {
             base: at_b.wrapping_sub(sx.wrapping_mul(geo.xb)),
             sx,
-            sy: mix(geo.l1.1, geo.l2.1),
+            sy,
         }
     }
     /// The value at column 0 of the row `dy` rows below the anchor row.
@@ -103,17 +121,76 @@ impl Plane {
 struct Geometry {
     l1: (i64, i64, i64),
     l2: (i64, i64, i64),
+    /// `l1` and `l2` as `[x, y, anchor]` in `i32` when all six fit (any triangle of display
+    /// size).
+    l32: Option<([i32; 3], [i32; 3])>,
     xb: i32,
 }
 
 impl Geometry {
     /// From the snapped vertices (positive orientation), twice the area `d > 0` and the
-    /// anchor pixel. `1/d` is one 64-bit division (a 31-bit reciprocal `r` with `1/d = r
-    /// 2^-k` to 2^-30 relative), every weight a product and a shift: `dl1/dX = f2/d`,
-    /// `dl1/dY = -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with
-    /// `(e, f)` the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy`
-    /// (vertex 0 has `l1 = l2 = 0`).
+    /// anchor pixel. `1/d` is one division (a 31-bit reciprocal `r` with `1/d = r 2^-k` to
+    /// 2^-30 relative: 31 restoring steps in 32-bit integers when `d < 2^32`, a 64-bit
+    /// division beyond), every weight a product and a shift: `dl1/dX = f2/d`, `dl1/dY =
+    /// -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with `(e, f)`
+    /// the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy` (vertex 0
+    /// has `l1 = l2 = 0`).
     fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
+        Self::new_small(fp, d, xb, yb).unwrap_or_else(|| Self::new_wide(fp, d, xb, yb))
+    }
+
+    /// [`Geometry::new`] in 32-bit integers (no 64-bit shift or library call on a Cortex-M0)
+    /// for a triangle whose vertex offsets are under 2^15 sub-pixels (any of display size):
+    /// the same values, or `None` when one does not fit an `i32` (then
+    /// [`Geometry::new_wide`]). With `d < 2^31` and `r = rh 2^16 + rl`, each weight `floor(x
+    /// r / 2^s)` is put together from `x rh` and `x rl` (both fit an `i32`).
+    fn new_small(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Option<Self> {
+        // Coordinates within MAX_COORD: the differences fit an i32.
+        let off = |k: usize| (fp[k].x.wrapping_sub(fp[0].x), fp[k].y.wrapping_sub(fp[0].y));
+        let ((e1, f1), (e2, f2)) = (off(1), off(2));
+        if [e1, f1, e2, f2].iter().any(|c| c.unsigned_abs() >= 1 << 15) {
+            return None;
+        }
+        let d = u32::try_from(d).ok().filter(|&d| d > 0)?; // |e1 f2 - e2 f1| < 2^31
+        let n = 32 - d.leading_zeros(); // d in [2^(n-1), 2^n)
+        let r = recip62(d << (32 - n)); // 2^(n + 30) / d, in (2^30, 2^31]
+                                        // Per pixel with BARY_FRAC bits: floor(x r / 2^s), s = n + 30 - 4 - BARY_FRAC.
+        let s = n + 26 - BARY_FRAC;
+        let (rh, rl) = ((r >> 16) as i32, (r & 0xFFFF) as i32); // rh <= 2^15
+        let scale = |x: i32| {
+            // |x| < 2^15: |x rh| < 2^30, |x rl| < 2^31.
+            let (a, b) = (x * rh, x * rl);
+            if s >= 16 {
+                Some((a + (b >> 16)) >> (s - 16))
+            } else {
+                // a 2^(16 - s) and floor(b / 2^s) have the sign of x: an overflow of the
+                // first (the shift does not come back) means the sum does not fit either.
+                let up = a << (16 - s);
+                if up >> (16 - s) != a {
+                    return None;
+                }
+                up.checked_add(b >> s)
+            }
+        };
+        let dx = xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x;
+        let dy = yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y;
+        // Products below 2^56, their sum exact in an i64.
+        let anchor = |gx: i32, gy: i32| i32::try_from((mul_32(gx, dx) + mul_32(gy, dy)) >> 4).ok();
+        let (g1x, g1y) = (scale(f2)?, scale(-e2)?);
+        let (g2x, g2y) = (scale(-f1)?, scale(e1)?);
+        let l1 = [g1x, g1y, anchor(g1x, g1y)?];
+        let l2 = [g2x, g2y, anchor(g2x, g2y)?];
+        let wide = |l: [i32; 3]| (l[0] as i64, l[1] as i64, l[2] as i64);
+        Some(Geometry {
+            l1: wide(l1),
+            l2: wide(l2),
+            l32: Some((l1, l2)),
+            xb,
+        })
+    }
+
+    /// [`Geometry::new`] in 64-bit integers (any triangle within `MAX_COORD`).
+    fn new_wide(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
         let off = |k: usize| {
             (
                 fp[k].x as i64 - fp[0].x as i64,
@@ -123,11 +200,17 @@ impl Geometry {
         let ((e1, f1), (e2, f2)) = (off(1), off(2));
         let d = d.max(1) as u64;
         let n = 64 - d.leading_zeros(); // d in [2^(n-1), 2^n)
-        let sh = n.saturating_sub(33);
-        let nn = n - sh; // <= 33
-        let r = ((1u64 << (nn + 30)) / (d >> sh)) as i64; // in (2^29, 2^31]
-                                                          // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
-                                                          // BARY_FRAC - n - 30).
+        let r = if n <= 32 {
+            // 2^(n + 30) / d = 2^62 / (d 2^(32 - n)): 32-bit steps (any triangle of display
+            // size; the 64-bit division is a library call on a Cortex-M0).
+            recip62((d as u32) << (32 - n)) as i64
+        } else {
+            let sh = n.saturating_sub(33);
+            let nn = n - sh; // <= 33
+            ((1u64 << (nn + 30)) / (d >> sh)) as i64 // in (2^29, 2^31]
+        };
+        // 1/d = r 2^-(n + 30); per pixel (16 sub-pixels) with BARY_FRAC bits: x r 2^(4 +
+        // BARY_FRAC - n - 30).
         let k = n + 30;
         let scale = |x: i64| {
             let p = mul_64(x, r);
@@ -142,12 +225,41 @@ impl Geometry {
         let dx = (xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x) as i64;
         let dy = (yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y) as i64;
         let plane = |gx: i64, gy: i64| (gx, gy, (mul_64(gx, dx).wrapping_add(mul_64(gy, dy))) >> 4);
+        let (l1, l2) = (plane(scale(f2), scale(-e2)), plane(scale(-f1), scale(e1)));
+        let narrow = |l: (i64, i64, i64)| {
+            Some([
+                i32::try_from(l.0).ok()?,
+                i32::try_from(l.1).ok()?,
+                i32::try_from(l.2).ok()?,
+            ])
+        };
         Geometry {
-            l1: plane(scale(f2), scale(-e2)),
-            l2: plane(scale(-f1), scale(e1)),
+            l1,
+            l2,
+            l32: narrow(l1).zip(narrow(l2)),
             xb,
         }
     }
+}
+
+/// `floor(2^62 / d)` for `d` in `[2^31, 2^32)` (in `(2^30, 2^31]`): restoring division in
+/// 32-bit integers, one quotient bit per step (the dividend's top 32 bits are `2^31`, its
+/// other 31 bits zero).
+fn recip62(d: u32) -> u32 {
+    // With rem < d, 2 rem >= d exactly when rem >= ceil(d / 2) = h, and then 2 rem - d =
+    // rem - (d - rem) (no 32-bit overflow either way).
+    let h = d - d / 2;
+    let (mut q, mut rem) = if d == 1 << 31 {
+        (1u32, 0u32)
+    } else {
+        (0, 1 << 31)
+    };
+    for _ in 0..31 {
+        let bit = u32::from(rem >= h);
+        rem = if bit != 0 { rem - (d - rem) } else { rem + rem };
+        q = q + q + bit;
+    }
+    q
 }
 
 /// Scan-converts one triangle into the band (see the [`prepared`](super::prepared) module docs).
@@ -187,10 +299,13 @@ pub(super) fn raster<T, P, S>(
                 Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo)
             });
             let table = ctx.table;
-            let shift = COLOUR_FRAC - ENCODE_INDEX_BITS;
+            const SHIFT: u32 = COLOUR_FRAC - ENCODE_INDEX_BITS;
             // (Stepping the four attributes by additions instead of `row + x sx` per pixel,
             // and indexing the band's rows directly, were both measured slower on the
-            // Cortex-M0+: more live values than its 8 low registers.)
+            // Cortex-M0+: more live values than its 8 low registers. So were, in the
+            // emulated demo: stepping only the depth, the slopes copied into locals (LLVM
+            // then strength-reduces and unrolls the loop, spilling), and one bounds check
+            // for the span's slices instead of the row's and the span's.)
             tri.for_each_span(width, row0, row1, |y, xs, xe| {
                 let Some((px, dp)) = band.row_mut(y as u16) else {
                     return;
@@ -207,6 +322,7 @@ pub(super) fn raster<T, P, S>(
                     return;
                 };
                 let mut x = xs as i32;
+                let mut written = px.len() as u32;
                 match dp.and_then(|d| d.get_mut(xs..=xe)) {
                     Some(dp) => {
                         for (p, d) in px.iter_mut().zip(dp.iter_mut()) {
@@ -214,11 +330,12 @@ pub(super) fn raster<T, P, S>(
                             if z < *d {
                                 *d = z;
                                 *p = table.pixel(
-                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
-                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
-                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> SHIFT,
+                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> SHIFT,
+                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> SHIFT,
                                 );
-                                stats.pixels = stats.pixels.wrapping_add(1);
+                            } else {
+                                written -= 1;
                             }
                             x += 1;
                         }
@@ -226,15 +343,15 @@ pub(super) fn raster<T, P, S>(
                     None => {
                         for p in px.iter_mut() {
                             *p = table.pixel(
-                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> shift,
-                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> shift,
-                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> shift,
+                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> SHIFT,
+                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> SHIFT,
+                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> SHIFT,
                             );
-                            stats.pixels = stats.pixels.wrapping_add(1);
                             x += 1;
                         }
                     }
                 }
+                stats.pixels = stats.pixels.wrapping_add(written);
             });
         }
         Shading::PerPixel => {
@@ -296,4 +413,76 @@ pub(super) fn raster<T, P, S>(
 #[inline(always)]
 fn depth16(q: i32) -> u16 {
     (q >> (DEPTH_FRAC - 16)).clamp(0, u16::MAX as i32) as u16
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{recip62, Geometry};
+    use crate::raster::edge::{Cull, EdgeTriangle, FixedPoint, SUBPIXEL};
+
+    #[test]
+    fn the_32_bit_geometry_equals_the_64_bit_one() {
+        let mut x = 0x2545_F491u32;
+        let mut next = |m: u32| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x % m
+        };
+        let (mut small, mut total) = (0, 0);
+        for case in 0..200_000u32 {
+            let span = [8, 64, 600, 5_000, 40_000, 70_000][case as usize % 6];
+            let mut p = || {
+                FixedPoint::new(
+                    next(span) as i32 - next(span / 2 + 1) as i32,
+                    next(span) as i32 - next(span / 2 + 1) as i32,
+                )
+            };
+            let v = [p(), p(), p()];
+            let Some(t) = EdgeTriangle::new(v, Cull::None) else {
+                continue;
+            };
+            let fp = t.vertices();
+            let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
+            let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
+            let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+            let wide = Geometry::new_wide(fp, t.area2(), xb, yb);
+            total += 1;
+            if let Some(g) = Geometry::new_small(fp, t.area2(), xb, yb) {
+                small += 1;
+                assert_eq!((g.l1, g.l2, g.l32), (wide.l1, wide.l2, wide.l32), "{v:?}");
+            } else {
+                // Only when a weight does not fit (or the offsets are too large).
+                let big = fp.iter().any(|q| {
+                    (q.x - fp[0].x).unsigned_abs() >= 1 << 15
+                        || (q.y - fp[0].y).unsigned_abs() >= 1 << 15
+                });
+                assert!(big || wide.l32.is_none(), "{v:?}");
+            }
+        }
+        assert!(small > total / 2 && total > 150_000, "{small} of {total}");
+    }
+
+    #[test]
+    fn the_32_bit_reciprocal_equals_the_64_bit_division() {
+        let mut x = 0x9E37_79B9u32;
+        let edge = [
+            1 << 31,
+            (1 << 31) + 1,
+            u32::MAX,
+            u32::MAX - 1,
+            0xC000_0000,
+            0xAAAA_AAAB,
+        ];
+        for d in edge {
+            assert_eq!(u64::from(recip62(d)), (1u64 << 62) / u64::from(d), "{d}");
+        }
+        for _ in 0..1_000_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            let d = x | (1 << 31);
+            assert_eq!(u64::from(recip62(d)), (1u64 << 62) / u64::from(d), "{d}");
+        }
+    }
 }
