@@ -132,7 +132,7 @@ use crate::lobe::MAX_EXPONENT;
 use crate::polygon::{
     arc_axis_form, cos_power_sums, for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight,
 };
-use crate::{Error, Real, Vec3};
+use crate::{Error, Real, UnitVec3, Vec3};
 
 mod luminaire;
 mod lune;
@@ -226,8 +226,11 @@ impl<T: Real> MomentSum<T> {
         let wg = w.dot(g);
         let vg = self.v.dot(g);
         let a = w.dot(s);
-        // b, and c^2 = f = 1 - (w.g)^2.
-        let (b, f) = arc_axis_form(w, g, s, wg, a);
+        // b, and c^2 = f = 1 - (w.g)^2. All three are unit vectors: every caller of
+        // raw_moment_sum / clipped_moment_sum normalizes w and v, g is a normalized pole or
+        // +-k1, +-k2 (which are w and v), s is normalized above.
+        let unit = UnitVec3::new_unchecked;
+        let (b, f) = arc_axis_form(unit(w), unit(g), unit(s), wg, a);
         let alpha = self.wv * wg;
         let stop = if self.budget > T::ZERO {
             let awg = wg.abs();

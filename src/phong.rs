@@ -75,6 +75,8 @@ use crate::vec3::cos_sin_between;
 use crate::Error;
 #[cfg(any(feature = "cap", feature = "hemisphere", feature = "polygon"))]
 use crate::Real;
+#[cfg(feature = "polygon")]
+use crate::UnitVec3;
 #[cfg(any(feature = "cap", feature = "polygon"))]
 use crate::Vec3;
 
@@ -324,14 +326,15 @@ impl<T: Real> SphereLight<T> {
 fn phong_edge_terms<T: Real>(
     g: Vec3<T>,
     dot: T,
-    (ua, ra): (Vec3<T>, T),
+    (ua, ra): (UnitVec3<T>, T),
     rb: T,
-    r: Vec3<T>,
+    r: UnitVec3<T>,
     m: u32,
 ) -> Option<(T, T)> {
     let even = m & 1 == 0;
     // An edge seen end-on (G = 0): x = 0 contributes nothing.
     let (gu, glen) = g.normalize_with_length()?;
+    let gu = UnitVec3::new_unchecked(gu);
     // G and ua.ub computed from subnormal or overflowing products: rescale (the caller).
     if !products_in_range(glen, dot.abs()) {
         return None;
@@ -340,7 +343,7 @@ fn phong_edge_terms<T: Real>(
     // proportional to |ua| |ub|: the pair normalized.
     let cs = Vec3::new(dot, glen, T::ZERO).normalize()?;
     let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
-    let rg = r.dot(gu);
+    let rg = r.dot_unit(gu);
     let w = if even {
         // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
         // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
@@ -365,15 +368,19 @@ fn phong_edge_terms<T: Real>(
 #[cfg(feature = "polygon")]
 #[cold]
 #[inline(never)]
-fn phong_edge_terms_rescaled<T: Real>(e: &ClippedEdge<T>, r: Vec3<T>, m: u32) -> Option<(T, T)> {
+fn phong_edge_terms_rescaled<T: Real>(
+    e: &ClippedEdge<T>,
+    r: UnitVec3<T>,
+    m: u32,
+) -> Option<(T, T)> {
     let s = e.rescaled()?;
-    let a = s.ua.normalize()?;
-    let b = s.ub.normalize()?;
+    let a = s.ua.to_unit()?;
+    let b = s.ub.to_unit()?;
     phong_edge_terms(
         s.ua.cross(s.d),
         s.ua.dot(s.ub),
-        (a, r.dot(a)),
-        r.dot(b),
+        (a, r.dot_unit(a)),
+        r.dot_unit(b),
         r,
         m,
     )
@@ -394,7 +401,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         r: impl Direction<T>,
     ) -> Result<T, Error> {
         p.check_position("p")?;
-        let r = r.try_unit("r")?.into_inner();
+        let ru = r.try_unit("r")?;
+        let r = ru.into_inner();
         if self.in_plane(p) {
             self.resolved_in_plane(p)?;
             return Ok(T::ZERO);
@@ -407,7 +415,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         let mut fan = T::ZERO;
         // The last edge's end, its direction and r . direction: the next edge starts there
         // unless a horizon arc came between, so each vertex is normalized once.
-        let mut last: Option<(Vec3<T>, Vec3<T>, T)> = None;
+        let mut last: Option<(Vec3<T>, UnitVec3<T>, T)> = None;
         for_each_clipped_edge(self.vertices(), p, r, |e| {
             if e.horizon {
                 // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
@@ -421,9 +429,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             }
             let start = match last {
                 Some((at, dir, rd)) if at == e.ua => Some((dir, rd)),
-                _ => e.ua.normalize().map(|a| (a, r.dot(a))),
+                _ => e.ua.to_unit().map(|a| (a, ru.dot_unit(a))),
             };
-            let end = e.ub.normalize().map(|b| (b, r.dot(b)));
+            let end = e.ub.to_unit().map(|b| (b, ru.dot_unit(b)));
             last = end.map(|(b, rb)| (e.ub, b, rb));
             // An edge whose coordinates or products leave the normal range at this scale
             // (below TINY or beyond 1/TINY in absolute terms): the same edge scaled by a power
@@ -433,7 +441,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             // compile time.)
             let terms = match (start, end) {
                 (Some(a), Some((_, rb))) => {
-                    phong_edge_terms(e.ua.cross(e.d), e.ua.dot(e.ub), a, rb, r, m)
+                    phong_edge_terms(e.ua.cross(e.d), e.ua.dot(e.ub), a, rb, ru, m)
                 }
                 _ => None,
             };
@@ -441,7 +449,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 if T::RESOLUTION > T::ZERO {
                     None
                 } else {
-                    phong_edge_terms_rescaled(&e, r, m)
+                    phong_edge_terms_rescaled(&e, ru, m)
                 }
             }) else {
                 return;

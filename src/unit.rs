@@ -87,6 +87,15 @@ impl<T: Real> UnitVec3<T> {
         (T::dot3_small(a, b), T::dot3_small(c, c).sqrt())
     }
 
+    /// The scalar triple product `self . (g x s)` of three unit vectors: the value of
+    /// `self.dot(g.cross(s))`, bit for bit, with [`UnitVec3::dot_unit`]'s cheaper fixed point
+    /// (the cross product's components are at most 1).
+    #[inline(always)]
+    #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+    pub(crate) fn triple(self, g: UnitVec3<T>, s: UnitVec3<T>) -> T {
+        T::dot3_small(self.array(), T::cross3_small(g.array(), s.array()))
+    }
+
     /// The quadratic monomials of SH9 irradiance, `[x y, y z, x z, z z, x x - y y]`: the
     /// values of the plain products, bit for bit, with [`UnitVec3::dot_unit`]'s cheaper
     /// fixed point (every factor at most 1).

@@ -4,7 +4,7 @@
 //! `w.u(t) = a cos t + b sin t`. [`arc_axis_form`] sets the form up, [`cos_power_sums`]
 //! integrates its powers along the arc.
 
-use crate::{Real, Vec3};
+use crate::{Real, UnitVec3};
 
 /// The axis `w`'s form `w.u(t) = a cos t + b sin t` along the arc from the unit direction `s`
 /// about the unit pole `g`, given `wg = w.g` and `a = w.s`: returns `(b, f)`, `b = w.(g x s)`
@@ -12,12 +12,20 @@ use crate::{Real, Vec3};
 /// [`cos_power_sums`] raises `f` to the power `n/2`. Cost: a cross product, a dot product,
 /// 1 or 2 products.
 #[inline(always)]
-pub(crate) fn arc_axis_form<T: Real>(w: Vec3<T>, g: Vec3<T>, s: Vec3<T>, wg: T, a: T) -> (T, T) {
-    let b = w.dot(g.cross(s));
+pub(crate) fn arc_axis_form<T: Real>(
+    w: UnitVec3<T>,
+    g: UnitVec3<T>,
+    s: UnitVec3<T>,
+    wg: T,
+    a: T,
+) -> (T, T) {
+    // Every factor here is at most 2 in magnitude (unit vectors, their products, 1 +- wg for
+    // |wg| < 1/2): the products without fixed point's saturation tests, the same bits.
+    let b = w.triple(g, s);
     let f = if wg.abs() < T::HALF {
-        (T::ONE - wg) * (T::ONE + wg)
+        T::mul_small(T::ONE - wg, T::ONE + wg)
     } else {
-        (a * a + b * b).min(T::ONE)
+        (T::mul_small(a, a) + T::mul_small(b, b)).min(T::ONE)
     };
     (b, f)
 }
