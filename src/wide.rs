@@ -120,27 +120,36 @@ mod tests {
     extern crate std;
     use super::*;
 
-    #[cfg(any(feature = "phong", feature = "moments"))]
-    #[test]
-    fn shifted_products_by_halves_equal_the_64_bit_ones() {
-        let mut x = 0x9E37_79B9u32;
-        let mut next = || {
+    /// A xorshift generator of `i32`s from `seed`.
+    #[allow(dead_code)] // the tests below are feature-gated
+    fn xorshift(seed: u32) -> impl FnMut() -> i32 {
+        let mut x = seed;
+        move || {
             x ^= x << 13;
             x ^= x >> 17;
             x ^= x << 5;
             x as i32
-        };
-        let edge = [
-            0,
-            1,
-            -1,
-            0xFFFF,
-            0x10000,
-            -0x10000,
-            i32::MAX,
-            i32::MIN,
-            1 << 30,
-        ];
+        }
+    }
+
+    /// Operands at the 16-bit halves' boundaries and the ends of the range.
+    const EDGE: [i32; 9] = [
+        0,
+        1,
+        -1,
+        0xFFFF,
+        0x10000,
+        -0x10000,
+        i32::MAX,
+        i32::MIN,
+        1 << 30,
+    ];
+
+    #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+    #[test]
+    fn shifted_products_by_halves_equal_the_64_bit_ones() {
+        let mut next = xorshift(0x9E37_79B9);
+        let edge = EDGE;
         for s in 16..=32u32 {
             let mut pairs: std::vec::Vec<(i32, i32)> = std::vec::Vec::new();
             for &a in &edge {
@@ -167,24 +176,8 @@ mod tests {
     #[cfg(feature = "raster")]
     #[test]
     fn dot2_shr24_by_halves_equals_the_64_bit_sum() {
-        let mut x = 0x2545_F491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x as i32
-        };
-        let edge = [
-            0,
-            1,
-            -1,
-            0xFFFF,
-            0x10000,
-            -0x10000,
-            i32::MAX,
-            i32::MIN,
-            1 << 30,
-        ];
+        let mut next = xorshift(0x2545_F491);
+        let edge = EDGE;
         let mut quads: std::vec::Vec<[i32; 4]> = std::vec::Vec::new();
         for &a in &edge {
             for &b in &edge {
@@ -212,19 +205,11 @@ mod tests {
 
     #[test]
     fn products_are_exact() {
-        let edge = [
-            0,
-            1,
-            -1,
-            0xFFFF,
-            0x10000,
-            -0x10000,
-            i32::MAX,
-            i32::MIN,
-            i32::MIN + 1,
-            12345678,
-            -87654321,
-        ];
+        let edge: std::vec::Vec<i32> = EDGE
+            .iter()
+            .copied()
+            .chain([i32::MIN + 1, 12345678, -87654321])
+            .collect();
         for &a in &edge {
             for &b in &edge {
                 assert_eq!(mul_32(a, b), i64::from(a) * i64::from(b), "{a} {b}");
