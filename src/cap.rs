@@ -287,6 +287,14 @@ pub(crate) struct SphereCap<T> {
     pub(crate) ss: T,
 }
 
+impl<T: Real> SphereCap<T> {
+    /// `[sphere_lambert]` of this cap for the unit normal `n`.
+    #[inline(always)]
+    pub(crate) fn lambert(&self, n: UnitVec3<T>) -> T {
+        cap_lambert_from_cos(n.dot_unit(self.axis), self.cs, self.ss)
+    }
+}
+
 impl<T: Real> SphereLight<T> {
     /// A sphere of `radius` > 0 at `center`.
     ///
@@ -348,8 +356,7 @@ impl<T: Real> SphereLight<T> {
     /// [`Error::PointInsideSphere`].
     pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let n = n.try_unit("n")?;
-        Ok(cap_lambert_from_cos(n.dot_unit(cap.axis), cap.cs, cap.ss))
+        Ok(cap.lambert(n.try_unit("n")?))
     }
 
     /// `[sphere_lambert]`: exact Lambertian irradiance at `p` with normal `n`, normalized.

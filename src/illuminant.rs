@@ -50,6 +50,19 @@ pub trait Illuminant<T: Real> {
     /// Phong term at `p` for the unit reflection direction `r` and the lobe's exponent.
     /// Finite; 0 where the model has no value.
     fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T>;
+    /// Both terms at one point, `(diffuse(p, n), phong(lobe, p, r))`, bit for bit: a light
+    /// that computes something per point for both (the sphere's cap, a [`Scene`](crate::Scene)'s
+    /// shaping factors) computes it once. The default calls the two. Cost: at most theirs.
+    #[inline]
+    fn diffuse_and_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        (self.diffuse(p, n), self.phong(lobe, p, r))
+    }
 }
 
 #[inline(always)]
@@ -78,6 +91,17 @@ impl<T: Real, L: Illuminant<T> + ?Sized> Illuminant<T> for &L {
     #[inline]
     fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: UnitVec3<T>) -> Rgb<T> {
         (**self).phong(lobe, p, r)
+    }
+    /// The referenced light's [`Illuminant::diffuse_and_phong`].
+    #[inline]
+    fn diffuse_and_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        (**self).diffuse_and_phong(lobe, p, n, r)
     }
 }
 
@@ -397,6 +421,22 @@ mod cap_impls {
             {
                 let _ = (lobe, p, r);
                 black()
+            }
+        }
+        /// The cap the sphere subtends at `p`, computed once for both terms (the same bits
+        /// as the two calls).
+        #[cfg(feature = "phong")]
+        #[inline]
+        fn diffuse_and_phong(
+            &self,
+            lobe: &PhongLobe<T>,
+            p: Vec3<T>,
+            n: UnitVec3<T>,
+            r: UnitVec3<T>,
+        ) -> (Rgb<T>, Rgb<T>) {
+            match self.cap_at(p) {
+                Ok(cap) => (grey(cap.lambert(n)), grey(cap.phong(lobe.exponent(), r))),
+                Err(_) => (black(), black()),
             }
         }
     }

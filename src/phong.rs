@@ -56,7 +56,7 @@
 //! tabulates the measured errors.
 
 #[cfg(feature = "cap")]
-use crate::cap::{CapLight, SphereLight};
+use crate::cap::{CapLight, SphereCap, SphereLight};
 #[cfg(feature = "hemisphere")]
 use crate::hemisphere::HemisphereLight;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
@@ -75,7 +75,7 @@ use crate::vec3::cos_sin_between;
 use crate::Error;
 #[cfg(any(feature = "cap", feature = "hemisphere", feature = "polygon"))]
 use crate::Real;
-#[cfg(feature = "polygon")]
+#[cfg(any(feature = "cap", feature = "polygon"))]
 use crate::UnitVec3;
 #[cfg(any(feature = "cap", feature = "polygon"))]
 use crate::Vec3;
@@ -205,6 +205,16 @@ fn cap_boundary_sums<T: Real>(m: u32, x: T, sin_x: T, c: T, s: T, cs: T, ss: T) 
     (fsum, gsum)
 }
 
+#[cfg(feature = "cap")]
+impl<T: Real> SphereCap<T> {
+    /// `[phong_sphere]` of this cap for the unit reflection direction `r` and exponent `m`.
+    #[inline(always)]
+    pub(crate) fn phong(&self, m: u32, r: UnitVec3<T>) -> T {
+        let (c, s) = cos_sin_between(r, self.axis);
+        phong_cap_from_angle(m, c, s, self.cs, self.ss)
+    }
+}
+
 /// Snyder's eq. 24 in the stable form of the module docs, from `c = cos w`, `s = sin w`
 /// (`w` between `r` and the cap axis), `cs`, `ss`.
 #[cfg(feature = "cap")]
@@ -294,9 +304,7 @@ impl<T: Real> SphereLight<T> {
         r: impl Direction<T>,
     ) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let r = r.try_unit("r")?;
-        let (c, s) = cos_sin_between(r, cap.axis);
-        Ok(phong_cap_from_angle(lobe.m, c, s, cap.cs, cap.ss))
+        Ok(cap.phong(lobe.m, r.try_unit("r")?))
     }
 
     /// `[phong_sphere]`: Phong illumination at `p` from the sphere (the cap of eq. 7), in [0, 1].

@@ -378,6 +378,22 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for Scene<T, L, N> {
             .iter()
             .fold(Rgb::splat(T::ZERO), |acc, e| acc.add(e.phong(lobe, p, r)))
     }
+    /// Both sums in one pass over the lights (each summed in the same order as the two
+    /// calls: the same bits), a sphere's cap computed once.
+    #[inline]
+    fn diffuse_and_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        let zero = Rgb::splat(T::ZERO);
+        self.entries.iter().fold((zero, zero), |(d, s), e| {
+            let (de, se) = e.diffuse_and_phong(lobe, p, n, r);
+            (d.add(de), s.add(se))
+        })
+    }
 }
 
 impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_, T, L, N> {
@@ -399,6 +415,25 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_
         self.active.iter().fold(Rgb::splat(T::ZERO), |acc, &i| {
             e.get(usize::from(i))
                 .map_or(acc, |l| acc.add(l.phong(lobe, p, r)))
+        })
+    }
+    /// Both sums in one pass over the kept lights, in push order (the same bits as the two
+    /// calls), a sphere's cap computed once.
+    #[inline]
+    fn diffuse_and_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        let e = &self.scene.entries;
+        let zero = Rgb::splat(T::ZERO);
+        self.active.iter().fold((zero, zero), |(d, s), &i| {
+            e.get(usize::from(i)).map_or((d, s), |l| {
+                let (de, se) = l.diffuse_and_phong(lobe, p, n, r);
+                (d.add(de), s.add(se))
+            })
         })
     }
 }
@@ -483,6 +518,33 @@ impl<T: Real, const N: usize> Entry<T, N> {
             SceneLight::Sh9(l) => Illuminant::phong(l, lobe, p, r),
         };
         mul_rgb(v, self.colour).scale(f)
+    }
+}
+
+impl<T: Real, const N: usize> Entry<T, N> {
+    /// `(diffuse(p, n), phong(lobe, p, r))`, bit for bit: for a sphere, the beam factor and
+    /// the cap once ([`Illuminant::diffuse_and_phong`]); the two calls for the other lights.
+    #[inline]
+    fn diffuse_and_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        #[cfg(feature = "cap")]
+        if let SceneLight::Sphere(l) = &self.light {
+            let f = self.factor(p);
+            if !(f > T::ZERO) {
+                return (Rgb::splat(T::ZERO), Rgb::splat(T::ZERO));
+            }
+            let (d, s) = Illuminant::diffuse_and_phong(l, lobe, p, n, r);
+            return (
+                mul_rgb(d, self.colour).scale(f),
+                mul_rgb(s, self.colour).scale(f),
+            );
+        }
+        (self.diffuse(p, n), self.phong(lobe, p, r))
     }
 }
 

@@ -105,12 +105,15 @@ impl<T: Real, L: Illuminant<T> + ?Sized> Shader<T> for Lit<'_, T, L> {
     #[inline]
     fn shade(&self, p: Vec3<T>, n: UnitVec3<T>, v: UnitVec3<T>) -> Rgb<T> {
         let m = self.material;
-        let mut c = mul_rgb(m.diffuse, self.light.diffuse(p, n));
         let s = m.specular;
-        if s.r > T::ZERO || s.g > T::ZERO || s.b > T::ZERO {
+        let c = if s.r > T::ZERO || s.g > T::ZERO || s.b > T::ZERO {
+            // Both terms in one call: a light that shares work between them does it once.
             let r = reflect(v, n);
-            c = c.add(mul_rgb(s, self.light.phong(&m.lobe, p, r)));
-        }
+            let (d, ph) = self.light.diffuse_and_phong(&m.lobe, p, n, r);
+            mul_rgb(m.diffuse, d).add(mul_rgb(s, ph))
+        } else {
+            mul_rgb(m.diffuse, self.light.diffuse(p, n))
+        };
         c.finite_or_zero()
     }
 }
