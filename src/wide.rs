@@ -24,7 +24,11 @@ pub(crate) fn mul_32(a: i32, b: i32) -> i64 {
 /// with `a b = H 2^32 + w 2^16 + r`, `r < 2^16`, the result is `H 2^(32 - s) + floor(w /
 /// 2^(s - 16))`, no 64-bit addition or shift), the plain 64-bit product elsewhere. Exact on
 /// both (the same bits).
-#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+#[cfg(all(
+    feature = "fixed",
+    feature = "polygon",
+    any(feature = "phong", feature = "moments")
+))]
 #[inline(always)]
 pub(crate) fn mul_shr(a: i32, b: i32, s: u32) -> i32 {
     if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
@@ -35,7 +39,11 @@ pub(crate) fn mul_shr(a: i32, b: i32, s: u32) -> i32 {
 }
 
 /// [`mul_shr`] from four 16 x 16-bit products (each fits the 32-bit `MULS`).
-#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+#[cfg(all(
+    feature = "fixed",
+    feature = "polygon",
+    any(feature = "phong", feature = "moments")
+))]
 #[inline(always)]
 pub(crate) fn mul_shr_by_halves(a: i32, b: i32, s: u32) -> i32 {
     let s = s.clamp(16, 32);
@@ -145,7 +153,11 @@ mod tests {
         1 << 30,
     ];
 
-    #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+    #[cfg(all(
+        feature = "fixed",
+        feature = "polygon",
+        any(feature = "phong", feature = "moments")
+    ))]
     #[test]
     fn shifted_products_by_halves_equal_the_64_bit_ones() {
         let mut next = xorshift(0x9E37_79B9);
