@@ -46,7 +46,9 @@
 //!
 //! Storage: one [`PreparedVertex`] per mesh vertex (caller-provided). Per frame: one vertex
 //! transform, normalization and projection per vertex (one division), one shader call per
-//! visible vertex. Per band and triangle: a row test; per triangle drawn: an edge setup, four
+//! visible vertex. Per band and triangle: a row test (with
+//! [`PreparedMesh::with_triangle_rows`], one load and two comparisons per triangle, and
+//! none of a culled one's vertex loads); per triangle drawn: an edge setup, four
 //! attribute planes (Gouraud: depth and three channels; per pixel: depth and two barycentric
 //! weights); per covered pixel: Gouraud about 20 integer operations, per pixel the shader, one
 //! division and one normalization in `T`.
@@ -107,6 +109,53 @@ impl<T: Real> Default for PreparedVertex<T> {
     }
 }
 
+/// The pixel rows one triangle of a [`PreparedMesh`] can touch this frame (see
+/// [`PreparedMesh::with_triangle_rows`]): storage only, 4 bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TriangleRows {
+    /// No row at or after this one (clamped to `0..=65535`).
+    top: u16,
+    /// No row before this one (clamped to `0..=65535`).
+    end: u16,
+}
+
+impl TriangleRows {
+    /// A triangle that touches no row (to fill storage arrays).
+    pub const EMPTY: Self = TriangleRows { top: 0, end: 0 };
+    /// Every row (a triangle that crosses a clip plane).
+    const ALL: Self = TriangleRows {
+        top: 0,
+        end: u16::MAX,
+    };
+    /// The rows of a triangle with these (unclipped) vertices: those whose test in
+    /// [`PreparedMesh::draw`] (`hi < 16 row0 || lo > 16 row1` with the vertices' lowest and
+    /// highest sub-pixel rows `lo`, `hi`) passes: `end = floor(hi / 16) + 1`, `top =
+    /// floor((lo - 1) / 16)`, both clamped to `0..=65535` (which keeps the verdict for any
+    /// band within `0..=65535`).
+    #[inline(always)]
+    fn of(fp: &[FixedPoint; 3]) -> Self {
+        let lo = fp[0].y.min(fp[1].y).min(fp[2].y);
+        let hi = fp[0].y.max(fp[1].y).max(fp[2].y);
+        let clamp = |r: i32| r.clamp(0, u16::MAX as i32) as u16;
+        TriangleRows {
+            top: clamp(lo.saturating_sub(1).div_euclid(SUBPIXEL)),
+            end: clamp(hi.div_euclid(SUBPIXEL).saturating_add(1)),
+        }
+    }
+    /// `true` when the triangle can touch no pixel row in `[row0, row1)` (`0 <= row0 < row1
+    /// <= 65535`): the same verdict as the sub-pixel test of [`PreparedMesh::draw`].
+    #[inline(always)]
+    fn misses(self, row0: i32, row1: i32) -> bool {
+        i32::from(self.end) <= row0 || i32::from(self.top) >= row1
+    }
+}
+
+impl Default for TriangleRows {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
 /// A shaded vertex colour as [`PreparedMesh`] keeps it (linear, times the exposure, in fixed
 /// point): opaque, to be handed from one core's prepared mesh to another's
 /// ([`PreparedMesh::colours`], [`PreparedMesh::set_colours`]).
@@ -161,6 +210,12 @@ impl VertexColour {
 pub struct PreparedMesh<'m, 's, T> {
     mesh: Mesh<'m, T>,
     verts: &'s mut [PreparedVertex<T>],
+    /// One entry per triangle (or none: [`PreparedMesh::new`]), set by
+    /// [`PreparedMesh::transform`].
+    tri_rows: &'s mut [TriangleRows],
+    /// `tri_rows` holds this frame's rows, found by [`PreparedMesh::shade`] with this
+    /// culling (culled triangles touch no row).
+    rows_cull: Option<super::Cull>,
     /// Screen rows `[top, bottom)` the mesh can cover (all rows if a vertex is clipped).
     rows: (i32, i32),
     /// A transformed vertex lies beyond `T::COORDINATE_LIMIT` (fixed point): `draw` refuses.
@@ -192,9 +247,40 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         Ok(PreparedMesh {
             mesh,
             verts,
+            tri_rows: &mut [],
+            rows_cull: None,
             rows: (0, 0),
             out_of_range: false,
         })
+    }
+
+    /// [`PreparedMesh::new`] with `rows` for the pixel rows each triangle can touch (at least
+    /// one entry per triangle, 4 bytes each), found once per frame by [`PreparedMesh::shade`]
+    /// (or [`PreparedMesh::shade_some`]) as it visits the triangles: then (Gouraud)
+    /// [`PreparedMesh::draw`] passes over a triangle that misses the band with one load and
+    /// two comparisons, instead of loading its three vertices and comparing their rows, and
+    /// over a triangle that `shade` culled (with `draw`'s [`Cull`](super::Cull)) the same way.
+    /// The same pixels either way (without a shade since the last transform, with another
+    /// culling, and per pixel, `draw` visits every triangle as without `rows`).
+    ///
+    /// # Errors
+    /// [`RasterError::BufferTooSmall`] (`"prepared vertices"`, `"triangle rows"`).
+    pub fn with_triangle_rows(
+        mesh: Mesh<'m, T>,
+        storage: &'s mut [PreparedVertex<T>],
+        rows: &'s mut [TriangleRows],
+    ) -> Result<Self, RasterError> {
+        let needed = mesh.triangles().len();
+        let got = rows.len();
+        let rows = rows.get_mut(..needed).ok_or(RasterError::BufferTooSmall {
+            what: "triangle rows",
+            needed,
+            got,
+        })?;
+        rows.fill(TriangleRows::EMPTY);
+        let mut m = Self::new(mesh, storage)?;
+        m.tri_rows = rows;
+        Ok(m)
     }
 
     /// The mesh.
@@ -284,6 +370,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             top = top.min(fp.y);
             bottom = bottom.max(fp.y);
         }
+        self.rows_cull = None;
         self.rows = if clipped {
             (0, camera.height as i32)
         } else if top > bottom {
@@ -340,20 +427,38 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             camera.width as i32 * SUBPIXEL,
             camera.height as i32 * SUBPIXEL,
         );
-        for tri in self.mesh.triangles() {
+        let record = self.tri_rows.len() == self.mesh.triangles().len();
+        for (k, tri) in self.mesh.triangles().iter().enumerate() {
+            let mut set = |r: TriangleRows| {
+                if record {
+                    if let Some(slot) = self.tri_rows.get_mut(k) {
+                        *slot = r;
+                    }
+                }
+            };
             let Some([a, b, c]) = corners(self.verts, tri) else {
+                set(TriangleRows::EMPTY);
                 continue;
             };
             if a.outside & b.outside & c.outside != 0 {
+                set(TriangleRows::EMPTY);
                 continue;
             }
-            if (a.outside | b.outside | c.outside) == 0 {
+            if (a.outside | b.outside | c.outside) != 0 {
+                set(TriangleRows::ALL);
+            } else {
                 let fp = [a.fp, b.fp, c.fp];
+                if !faces(&fp, opts.cull) {
+                    // `draw` with the same culling skips it too.
+                    set(TriangleRows::EMPTY);
+                    continue;
+                }
+                set(TriangleRows::of(&fp));
                 let off_screen = fp.iter().all(|p| p.x < 0)
                     || fp.iter().all(|p| p.x > w)
                     || fp.iter().all(|p| p.y < 0)
                     || fp.iter().all(|p| p.y > h);
-                if off_screen || !faces(&fp, opts.cull) {
+                if off_screen {
                     continue;
                 }
             }
@@ -363,6 +468,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 }
             }
         }
+        self.rows_cull = record.then_some(opts.cull);
         let mut calls = 0u32;
         for (i, v) in self.verts.iter_mut().enumerate() {
             if v.flags & NEEDED == 0 || !mine(i) {
@@ -453,26 +559,53 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             row0,
             row1,
         };
-        for tri in self.mesh.triangles() {
-            let Some([a, b, c]) = corners(self.verts, tri) else {
-                continue;
-            };
-            if a.outside & b.outside & c.outside != 0 {
-                continue;
-            }
-            if (a.outside | b.outside | c.outside) == 0 {
-                let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
-                let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
-                if hi < sy0 || lo > sy1 || !faces(&[a.fp, b.fp, c.fp], opts.cull) {
+        let tris = self.mesh.triangles();
+        if self.rows_cull == Some(opts.cull) {
+            for (tri, r) in tris.iter().zip(self.tri_rows.iter()) {
+                if r.misses(row0, row1) {
                     continue;
                 }
-                let fv = [a, b, c].map(ScreenVertex::from_prepared);
-                raster(&ctx, band, &fv, &mut stats);
-            } else {
-                self.draw_clipped(&ctx, band, [a, b, c], &mut stats);
+                self.draw_triangle(&ctx, band, tri, (sy0, sy1), &mut stats);
+            }
+        } else {
+            for tri in tris {
+                self.draw_triangle(&ctx, band, tri, (sy0, sy1), &mut stats);
             }
         }
         Ok(stats)
+    }
+
+    /// One triangle of [`PreparedMesh::draw`] (`sy`: the sub-pixel rows of the band's first
+    /// and last pixel centres).
+    #[inline(always)]
+    fn draw_triangle<P, S>(
+        &self,
+        ctx: &Context<'_, T, S>,
+        band: &mut Band<'_, P>,
+        tri: &[u16; 3],
+        (sy0, sy1): (i32, i32),
+        stats: &mut DrawStats,
+    ) where
+        P: PixelFormat,
+        S: Shader<T> + ?Sized,
+    {
+        let Some([a, b, c]) = corners(self.verts, tri) else {
+            return;
+        };
+        if a.outside & b.outside & c.outside != 0 {
+            return;
+        }
+        if (a.outside | b.outside | c.outside) == 0 {
+            let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
+            let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
+            if hi < sy0 || lo > sy1 || !faces(&[a.fp, b.fp, c.fp], ctx.opts.cull) {
+                return;
+            }
+            let fv = [a, b, c].map(ScreenVertex::from_prepared);
+            raster(ctx, band, &fv, stats);
+        } else {
+            self.draw_clipped(ctx, band, [a, b, c], stats);
+        }
     }
 
     /// A triangle that crosses a clip plane: clipped as [`draw`](super::draw) clips, its fan
@@ -581,6 +714,70 @@ impl<T: Real> ScreenVertex<T> {
             p: v.p,
             n: v.n,
             iw: v.iw,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{PreparedMesh, PreparedVertex, TriangleRows};
+    use crate::raster::{
+        mesh, Affine, Band, Camera, Cull, DrawOptions, EncodeTable, Encoding, Lit, Material, Mesh,
+        Projection, Rgb565, Shading, Vertex,
+    };
+    use crate::{Rgb, SphereLight, Vec3};
+
+    #[test]
+    fn triangle_rows_draw_the_same_pixels() {
+        let (mut verts, mut tris) = ([Vertex::default(); 17 * 9], [[0u16; 3]; 2 * 16 * 7]);
+        let counts = mesh::uv_sphere(1.0f32, 8, 16, &mut verts, &mut tris).unwrap();
+        let sphere = Mesh::new(&verts[..counts.vertices], &tris[..counts.triangles]).unwrap();
+        let lamp = SphereLight::new(Vec3::new(2.0, 2.0, 3.0), 0.5).unwrap();
+        let plastic = Material::new(Rgb::new(0.8, 0.3, 0.2), Rgb::splat(0.5), 16).unwrap();
+        let shader = Lit::new(&lamp, &plastic);
+        let table = EncodeTable::new::<f32>(Encoding::Srgb);
+        for (eye, cull) in [
+            (Vec3::new(0.0, 0.0, 4.0), Cull::Back),
+            (Vec3::new(0.5, 1.0, 2.5), Cull::None),
+            (Vec3::new(0.0, 0.3, 1.2), Cull::Back),
+        ] {
+            let camera = Camera::new(
+                eye,
+                Vec3::new(0.0, 0.0, 0.0),
+                Vec3::new(0.0, 1.0, 0.0),
+                Projection::Perspective { fov_y: 0.9 },
+                64,
+                64,
+            )
+            .unwrap();
+            let mut opts = DrawOptions::new(Shading::Gouraud);
+            opts.cull = cull;
+            let mut frames = [[Rgb565(0); 64 * 64]; 2];
+            let mut counts = [0u32; 2];
+            for (k, frame) in frames.iter_mut().enumerate() {
+                let mut storage = [PreparedVertex::EMPTY; 17 * 9];
+                let mut rows = [TriangleRows::EMPTY; 2 * 16 * 7];
+                let mut m = if k == 0 {
+                    PreparedMesh::new(sphere, &mut storage).unwrap()
+                } else {
+                    PreparedMesh::with_triangle_rows(sphere, &mut storage, &mut rows).unwrap()
+                };
+                m.transform(&camera, &Affine::identity());
+                m.shade(&camera, &shader, &opts);
+                let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
+                let mut band = Band::new(&mut px, Some(&mut depth), 64, 0).unwrap();
+                for y0 in (0..64).step_by(8) {
+                    band.move_to(y0);
+                    band.clear(Rgb565(1));
+                    let s = m.draw(&camera, &mut band, &shader, &opts, &table).unwrap();
+                    counts[k] += s.rasterized;
+                    let at = y0 as usize * 64;
+                    frame[at..at + 64 * 8].copy_from_slice(band.pixels());
+                }
+            }
+            assert_eq!(frames[0], frames[1]);
+            assert_eq!(counts[0], counts[1]);
+            assert!(frames[0].iter().filter(|p| p.0 != 1).count() > 200);
         }
     }
 }

@@ -46,8 +46,8 @@ pub mod spec;
 
 use arealight::raster::{
     mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
-    Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, Vertex,
-    VertexColour,
+    Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, TriangleRows,
+    Vertex, VertexColour,
 };
 use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3};
 
@@ -105,8 +105,8 @@ const LAMP_HEIGHT: f64 = 0.75;
 
 /// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
 /// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
-/// [`PreparedVertex`] per vertex) and the encoding table. About
-/// 60 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
+/// [`PreparedVertex`] per vertex, one [`TriangleRows`] per triangle) and the encoding table. About
+/// 72 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
 /// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
@@ -118,6 +118,9 @@ pub struct MeshBuffers<T> {
     sphere_frame: [PreparedVertex<T>; SPHERE_VERTICES],
     torus_frame: [PreparedVertex<T>; TORUS_VERTICES],
     lamp_frame: [PreparedVertex<T>; LAMP_VERTICES],
+    sphere_rows: [TriangleRows; SPHERE_TRIANGLES],
+    torus_rows: [TriangleRows; TORUS_TRIANGLES],
+    lamp_rows: [TriangleRows; LAMP_TRIANGLES],
     table: EncodeTable,
 }
 
@@ -140,6 +143,9 @@ impl<T: Real> MeshBuffers<T> {
             sphere_frame: [PreparedVertex::EMPTY; SPHERE_VERTICES],
             torus_frame: [PreparedVertex::EMPTY; TORUS_VERTICES],
             lamp_frame: [PreparedVertex::EMPTY; LAMP_VERTICES],
+            sphere_rows: [TriangleRows::EMPTY; SPHERE_TRIANGLES],
+            torus_rows: [TriangleRows::EMPTY; TORUS_TRIANGLES],
+            lamp_rows: [TriangleRows::EMPTY; LAMP_TRIANGLES],
             table: EncodeTable::zeroed(),
         }
     }
@@ -220,6 +226,9 @@ impl<'a, T: Real> Demo<'a, T> {
             sphere_frame,
             torus_frame,
             lamp_frame,
+            sphere_rows,
+            torus_rows,
+            lamp_rows,
             table,
         } = buffers;
         let sphere = mesh::uv_sphere(
@@ -279,9 +288,9 @@ impl<'a, T: Real> Demo<'a, T> {
         let table: &'a EncodeTable = table;
         Ok(Demo {
             camera,
-            sphere: PreparedMesh::new(sphere, sphere_frame)?,
-            torus: PreparedMesh::new(torus, torus_frame)?,
-            lamp: PreparedMesh::new(lamp, lamp_frame)?,
+            sphere: PreparedMesh::with_triangle_rows(sphere, sphere_frame, sphere_rows)?,
+            torus: PreparedMesh::with_triangle_rows(torus, torus_frame, torus_rows)?,
+            lamp: PreparedMesh::with_triangle_rows(lamp, lamp_frame, lamp_rows)?,
             // The panel: 2 x 1.4 units, 1.9 above the floor-less ground, facing down (a
             // polygon light emits from both faces).
             panel: PolygonLight::new(&[
