@@ -47,8 +47,8 @@
 //! Storage: one [`PreparedVertex`] per mesh vertex (caller-provided). Per frame: one vertex
 //! transform, normalization and projection per vertex (one division), one shader call per
 //! visible vertex. Per band and triangle: a row test (with
-//! [`PreparedMesh::with_triangle_rows`], one load and two comparisons per triangle, and
-//! none of a culled one's vertex loads); per triangle drawn: an edge setup, four
+//! [`PreparedMesh::with_triangle_rows`], one load and two comparisons per triangle: none of
+//! a culled one's vertex loads, nor a drawn one's row and culling tests); per triangle drawn: an edge setup, four
 //! attribute planes (Gouraud: depth and three channels; per pixel: depth and two barycentric
 //! weights); per covered pixel: Gouraud about 20 integer operations, per pixel the shader, one
 //! division and one normalization in `T`.
@@ -259,7 +259,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     /// (or [`PreparedMesh::shade_some`]) as it visits the triangles: then (Gouraud)
     /// [`PreparedMesh::draw`] passes over a triangle that misses the band with one load and
     /// two comparisons, instead of loading its three vertices and comparing their rows, and
-    /// over a triangle that `shade` culled (with `draw`'s [`Cull`](super::Cull)) the same way.
+    /// over a triangle that `shade` culled (with `draw`'s [`Cull`](super::Cull)) the same way;
+    /// the others it draws without testing their rows and faces again.
     /// The same pixels either way (without a shade since the last transform, with another
     /// culling, and per pixel, `draw` visits every triangle as without `rows`).
     ///
@@ -565,25 +566,27 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 if r.misses(row0, row1) {
                     continue;
                 }
-                self.draw_triangle(&ctx, band, tri, (sy0, sy1), &mut stats);
+                // Its row and culling tests passed: `None` skips them.
+                self.draw_triangle(&ctx, band, tri, None, &mut stats);
             }
         } else {
             for tri in tris {
-                self.draw_triangle(&ctx, band, tri, (sy0, sy1), &mut stats);
+                self.draw_triangle(&ctx, band, tri, Some((sy0, sy1)), &mut stats);
             }
         }
         Ok(stats)
     }
 
-    /// One triangle of [`PreparedMesh::draw`] (`sy`: the sub-pixel rows of the band's first
-    /// and last pixel centres).
+    /// One triangle of [`PreparedMesh::draw`]. `sy`: the sub-pixel rows of the band's first
+    /// and last pixel centres for the row and culling tests of an unclipped triangle, or
+    /// `None` when its [`TriangleRows`] has passed them.
     #[inline(always)]
     fn draw_triangle<P, S>(
         &self,
         ctx: &Context<'_, T, S>,
         band: &mut Band<'_, P>,
         tri: &[u16; 3],
-        (sy0, sy1): (i32, i32),
+        sy: Option<(i32, i32)>,
         stats: &mut DrawStats,
     ) where
         P: PixelFormat,
@@ -596,10 +599,12 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             return;
         }
         if (a.outside | b.outside | c.outside) == 0 {
-            let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
-            let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
-            if hi < sy0 || lo > sy1 || !faces(&[a.fp, b.fp, c.fp], ctx.opts.cull) {
-                return;
+            if let Some((sy0, sy1)) = sy {
+                let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
+                let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
+                if hi < sy0 || lo > sy1 || !faces(&[a.fp, b.fp, c.fp], ctx.opts.cull) {
+                    return;
+                }
             }
             let fv = [a, b, c].map(ScreenVertex::from_prepared);
             raster(ctx, band, &fv, stats);
