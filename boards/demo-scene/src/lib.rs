@@ -106,7 +106,7 @@ const LAMP_HEIGHT: f64 = 0.75;
 /// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
 /// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
 /// [`PreparedVertex`] per vertex, one [`TriangleRows`] per triangle) and the encoding table. About
-/// 72 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
+/// 64 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
 /// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],

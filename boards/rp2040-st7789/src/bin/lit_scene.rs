@@ -159,9 +159,9 @@ fn run() -> ! {
 
     // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
     //    UV sphere and a torus), their per-frame vertex data and the gamma table (about
-    //    72 KiB) live in a static buffer, filled once; the camera, materials and draw options
+    //    64 KiB) live in a static buffer, filled once; the camera, materials and draw options
     //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
-    //    stack, which 72 KiB would overflow on the second core's firmware); `take` hands out
+    //    stack, which 64 KiB would overflow on the second core's firmware); `take` hands out
     //    its `&'static mut` once.
     let buffers = BUFFERS.take();
     let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();

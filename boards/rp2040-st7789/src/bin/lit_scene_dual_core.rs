@@ -67,7 +67,7 @@ const SHADING: Shading = Shading::Gouraud;
 /// The bands of a frame (15 of 16 rows).
 const BANDS: u16 = HEIGHT.div_ceil(BAND_ROWS);
 
-/// Each core's meshes, per-frame vertex data and gamma table (about 72 KiB each), initialized
+/// Each core's meshes, per-frame vertex data and gamma table (about 64 KiB each), initialized
 /// at link time (all zeros: no copy through a stack).
 static CORE0_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
     ConstStaticCell::new(MeshBuffers::new());
