@@ -207,7 +207,7 @@ impl<T: Real> CapLight<T> {
     /// `[cap_lambert]`: exact Lambertian irradiance, normalized (in [0, 1]).
     ///
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
-    /// Cost: 1 normalization (none for a [`UnitVec3`](crate::UnitVec3)) and 1 dot product; in
+    /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
     /// the fillet also 1 sqrt and 2 atan2: median 58 instructions a call on the Cortex-M4F in
     /// f32, 37 with a `UnitVec3` (QEMU, exact).
     /// Fallback: 0 for a zero or non-finite `n`.

@@ -50,7 +50,7 @@ impl<T: Real> HemisphereLight<T> {
     /// hemisphere, `(1 + n.axis)/2` (Snyder eq. 4).
     ///
     /// Accuracy: 2 ULP plus the normalization of `n`. Cost: 1 normalization (none for a
-    /// [`UnitVec3`](crate::UnitVec3)), 1 dot product: 49 instructions a call on the Cortex-M4F
+    /// [`UnitVec3`]), 1 dot product: 49 instructions a call on the Cortex-M4F
     /// in f32, 30 with a `UnitVec3`; 620 and 157 on the Cortex-M0 in `Fixed22` (QEMU, exact).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
@@ -195,7 +195,7 @@ impl<T: Real> SkyGround<T> {
     /// radiance (the two hemisphere terms are Snyder eq. 4 for `up` and `-up`).
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`. Cost: 1
-    /// normalization (none for a [`UnitVec3`](crate::UnitVec3)), 1 dot product, 3 multiply-adds:
+    /// normalization (none for a [`UnitVec3`]), 1 dot product, 3 multiply-adds:
     /// 89 instructions a call on the Cortex-M4F in f32, 66 with a `UnitVec3` (QEMU, exact).
     /// Fallback: black for a zero or non-finite `n`.
     ///
