@@ -482,8 +482,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
     /// and a division by the step's integer ([`Real::div_u32`]; on fixed point, 4 products in
     /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). Measured on the
-    /// Cortex-M0, `Fixed22`, a quad at m = 16: 18 602 instructions (20 419 with the recurrence
-    /// in the type's own arithmetic). Scale-free on the float
+    /// Cortex-M0, `Fixed22`, a quad at m = 16: 16 199 instructions (20 419 with the recurrence
+    /// in the type's own arithmetic and the unit vectors' products saturating). Scale-free on
+    /// the float
     /// types: an edge whose coordinates or products would leave the normal range (beyond
     /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
     /// scaled by a power of two first, on a cold path that costs nothing when not taken.
