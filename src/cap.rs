@@ -44,9 +44,32 @@ pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
     } else if c <= -ss {
         T::ZERO
     } else {
-        let q = ((ss - c) * (ss + c)).sqrt();
-        let pi_e = c * ss * ss * q.atan2(-cs * c) - cs * q + q.atan2(cs);
-        (pi_e * T::FRAC_1_PI).clamp01()
+        cap_lambert_fillet(c, cs, ss)
+    }
+}
+
+/// The fillet case of [`cap_lambert_from_cos`] (`-ss < c < ss`). Not inlined: the outer
+/// cases then need no more registers than a dot product and a product.
+#[inline(never)]
+fn cap_lambert_fillet<T: Real>(c: T, cs: T, ss: T) -> T {
+    let q = ((ss - c) * (ss + c)).sqrt();
+    let pi_e = c * ss * ss * q.atan2(-cs * c) - cs * q + q.atan2(cs);
+    (pi_e * T::FRAC_1_PI).clamp01()
+}
+
+/// The Hermite approximation's value where it needs only `c = n.axis`: `c ss^2` where the
+/// cap is fully visible (`c >= ss`), 0 where it is below the horizon (`c <= -ss`), `None` in
+/// the fillet between. At the fillet's ends the cubics meet these values (`ss^3` and 0), so
+/// where rounding puts `c` and the angle `w` on different sides of an end, the two answers
+/// differ only by that rounding.
+#[inline(always)]
+pub(crate) fn outside_fillet<T: Real>(c: T, ss: T, ss2: T) -> Option<T> {
+    if c >= ss {
+        Some((c * ss2).clamp01())
+    } else if c <= -ss {
+        Some(T::ZERO)
+    } else {
+        None
     }
 }
 
@@ -91,6 +114,26 @@ impl<T: Real> HermiteFillet<T> {
         let lo = hermite_coeffs(ss2 * ss, e_mid, -h * cs * ss2, -h * T::HALF * ss2);
         let hi = hermite_coeffs(e_mid, T::ZERO, -h * T::HALF * ss2, T::ZERO);
         HermiteFillet { sigma, ss2, lo, hi }
+    }
+
+    /// The approximation for the unit normal `n` around the unit `axis`; see
+    /// [`outside_fillet`], which answers first, so the angle `w` (a cross product, a square
+    /// root and an arc tangent) is computed only inside the fillet.
+    #[inline(always)]
+    pub(crate) fn eval_unit(&self, n: UnitVec3<T>, axis: UnitVec3<T>, ss: T) -> T {
+        let d = n.into_inner() - axis.into_inner();
+        match outside_fillet(T::ONE - T::HALF * d.dot(d), ss, self.ss2) {
+            Some(e) => e,
+            None => self.eval_in_fillet(n, axis),
+        }
+    }
+
+    /// [`HermiteFillet::eval`] at the angle between `n` and `axis`. Not inlined: kept out of
+    /// the caller, whose outer cases then need no more registers than a dot product.
+    #[inline(never)]
+    fn eval_in_fillet(&self, n: UnitVec3<T>, axis: UnitVec3<T>) -> T {
+        let (c, s) = crate::vec3::cos_sin_between(n, axis);
+        self.eval(c, s.atan2(c))
     }
 
     /// The approximation at `c = cos w`, `w` (both of the same direction).
@@ -266,8 +309,8 @@ impl<T: Real> CapLight<T> {
     /// <!-- END acc-cap_lambert_hermite -->
     #[inline]
     pub fn lambert_hermite(&self, n: impl Direction<T>) -> T {
-        match crate::vec3::angle_to(n, self.axis) {
-            Some((c, _, w)) => self.hermite.eval(c, w),
+        match n.to_unit() {
+            Some(n) => self.hermite.eval_unit(n, self.axis, self.sin_sigma),
             None => T::ZERO,
         }
     }
@@ -292,6 +335,25 @@ impl<T: Real> SphereCap<T> {
     #[inline(always)]
     pub(crate) fn lambert(&self, n: UnitVec3<T>) -> T {
         cap_lambert_from_cos(n.dot_unit(self.axis), self.cs, self.ss)
+    }
+
+    /// `[sphere_lambert_hermite]` of this cap for the unit normal `n`: outside the fillet
+    /// from `c` alone ([`outside_fillet`]); inside it, sigma and the cubics are built here.
+    #[inline(always)]
+    pub(crate) fn lambert_hermite(&self, n: UnitVec3<T>) -> T {
+        match outside_fillet(n.dot_unit(self.axis), self.ss, self.ss * self.ss) {
+            Some(e) => e,
+            None => self.hermite_in_fillet(n),
+        }
+    }
+
+    /// The fillet case of [`SphereCap::lambert_hermite`]. Not inlined (see
+    /// [`HermiteFillet::eval_unit`]).
+    #[inline(never)]
+    fn hermite_in_fillet(&self, n: UnitVec3<T>) -> T {
+        let sigma = self.ss.atan2(self.cs);
+        let (c, s) = crate::vec3::cos_sin_between(n, self.axis);
+        HermiteFillet::new(sigma, self.cs, self.ss).eval(c, s.atan2(c))
     }
 }
 
@@ -328,25 +390,44 @@ impl<T: Real> SphereLight<T> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] or [`Error::OutOfRange`] for `p`, [`Error::PointInsideSphere`].
-    #[inline]
+    ///
+    /// For the float types the check of `p` waits for a failed normalization: a NaN or
+    /// infinite `p` makes `center - p` non-finite, which the normalization refuses, so a
+    /// valid `p` costs no test of its own. Fixed point checks `p`'s range first.
+    #[inline(always)]
     pub(crate) fn cap_at(&self, p: Vec3<T>) -> Result<SphereCap<T>, Error> {
-        p.check_position("p")?;
-        let (axis, d) = (self.center - p)
-            .normalize_with_length()
-            .ok_or(Error::PointInsideSphere)?;
+        let has_limit = T::COORDINATE_LIMIT < f64::MAX;
+        if has_limit {
+            p.check_position("p")?;
+        }
+        let Some((axis, d)) = (self.center - p).normalize_with_length() else {
+            return Err(Self::no_cap_at(p));
+        };
         if !(d > self.radius) {
             return Err(Error::PointInsideSphere);
         }
         let inv_d = T::ONE / d;
-        let ss = (self.radius * inv_d).clamp01();
+        // 0 < r < d: both ratios are positive, and only rounding can take them above 1.
+        let ss = (self.radius * inv_d).min(T::ONE);
         // cos sigma from (d - r)(d + r), not from 1 - ss^2: near the sphere ss is close to 1
         // and 1 - ss would keep only the rounding of r/d.
-        let cs = (((d - self.radius) * (d + self.radius)).sqrt() * inv_d).clamp01();
+        let cs = (((d - self.radius) * (d + self.radius)).sqrt() * inv_d).min(T::ONE);
         Ok(SphereCap {
             axis: UnitVec3::new_unchecked(axis),
             cs,
             ss,
         })
+    }
+
+    /// The error of [`SphereLight::cap_at`] when `center - p` has no direction: `p`'s own
+    /// (not finite, out of range) if it has one, else [`Error::PointInsideSphere`].
+    #[cold]
+    #[inline(never)]
+    fn no_cap_at(p: Vec3<T>) -> Error {
+        match p.check_position("p") {
+            Err(e) => e,
+            Ok(_) => Error::PointInsideSphere,
+        }
     }
 
     /// `[sphere_lambert]` with precise errors: see [`SphereLight::lambert`].
@@ -372,7 +453,11 @@ impl<T: Real> SphereLight<T> {
     /// <!-- END acc-sphere_lambert -->
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> T {
-        self.try_lambert(p, n).unwrap_or(T::ZERO)
+        // Not through `try_lambert`: its `Result` would be returned in memory.
+        match (self.cap_at(p), n.to_unit()) {
+            (Ok(cap), Some(n)) => cap.lambert(n),
+            _ => T::ZERO,
+        }
     }
 
     /// `[sphere_lambert_hermite]` with precise errors: see [`SphereLight::lambert_hermite`].
@@ -381,10 +466,7 @@ impl<T: Real> SphereLight<T> {
     /// As [`SphereLight::try_lambert`].
     pub fn try_lambert_hermite(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         let cap = self.cap_at(p)?;
-        let n = n.try_unit("n")?;
-        let sigma = cap.ss.atan2(cap.cs);
-        let (c, _, w) = crate::vec3::angle_to(n, cap.axis).ok_or(Error::ZeroLength("n"))?;
-        Ok(HermiteFillet::new(sigma, cap.cs, cap.ss).eval(c, w))
+        Ok(cap.lambert_hermite(n.try_unit("n")?))
     }
 
     /// `[sphere_lambert_hermite]`: Snyder's Hermite approximation with sigma from the sphere
@@ -399,6 +481,10 @@ impl<T: Real> SphereLight<T> {
     /// <!-- END acc-sphere_lambert_hermite -->
     #[inline]
     pub fn lambert_hermite(&self, p: Vec3<T>, n: impl Direction<T>) -> T {
-        self.try_lambert_hermite(p, n).unwrap_or(T::ZERO)
+        // Not through `try_lambert_hermite`: its `Result` would be returned in memory.
+        match (self.cap_at(p), n.to_unit()) {
+            (Ok(cap), Some(n)) => cap.lambert_hermite(n),
+            _ => T::ZERO,
+        }
     }
 }

@@ -159,6 +159,9 @@ pub struct SkyGround<T> {
     /// the irradiance is `mid + half c`.
     mid: Rgb<T>,
     half: Rgb<T>,
+    /// Every channel of `sky` and `ground` within `1e30` in magnitude: then `mid + half c`
+    /// for `|c| <= 1` cannot overflow, and the per-sample finiteness test is skipped.
+    bounded: bool,
 }
 
 impl<T: Real> SkyGround<T> {
@@ -175,6 +178,9 @@ impl<T: Real> SkyGround<T> {
             ground,
             mid: Rgb::new(s.r + g.r, s.g + g.g, s.b + g.b),
             half: Rgb::new(s.r - g.r, s.g - g.g, s.b - g.b),
+            bounded: [sky.r, sky.g, sky.b, ground.r, ground.g, ground.b]
+                .iter()
+                .all(|x| x.abs() <= T::from_f64(1e30)),
         })
     }
 
@@ -211,7 +217,13 @@ impl<T: Real> SkyGround<T> {
                 // sky (1 + c)/2 + ground (1 - c)/2 = mid + half c: one multiply-add a channel.
                 let c = n.dot_unit(self.up).clamp(-T::ONE, T::ONE);
                 let (m, h) = (self.mid, self.half);
-                Rgb::new(m.r + h.r * c, m.g + h.g * c, m.b + h.b * c).finite_or_zero()
+                let e = Rgb::new(m.r + h.r * c, m.g + h.g * c, m.b + h.b * c);
+                // Only radiances beyond 1e30 can round a channel past the type's range.
+                if self.bounded {
+                    e
+                } else {
+                    e.finite_or_zero()
+                }
             }
             None => Rgb::splat(T::ZERO),
         }

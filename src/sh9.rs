@@ -248,19 +248,25 @@ impl<T: Real> Sh9<T> {
         let l = &self.coeffs;
         let c = |i: usize, s: f64| l[i].scale(k(s));
         let konst = c(0, A[0] * C00).add(c(6, -A[2] * C20));
-        Sh9Irradiance {
-            k: [
-                konst,
-                c(3, A[1] * C1),        // x
-                c(1, A[1] * C1),        // y
-                c(2, A[1] * C1),        // z
-                c(4, A[2] * C2),        // xy
-                c(5, A[2] * C2),        // yz
-                c(7, A[2] * C2),        // xz
-                c(6, 3.0 * A[2] * C20), // z^2
-                c(8, A[2] * C22),       // x^2 - y^2
-            ],
-        }
+        let k = [
+            konst,
+            c(3, A[1] * C1),        // x
+            c(1, A[1] * C1),        // y
+            c(2, A[1] * C1),        // z
+            c(4, A[2] * C2),        // xy
+            c(5, A[2] * C2),        // yz
+            c(7, A[2] * C2),        // xz
+            c(6, 3.0 * A[2] * C20), // z^2
+            c(8, A[2] * C22),       // x^2 - y^2
+        ];
+        // Every monomial of a unit normal is at most 1 in magnitude, so |E| <= sum |k| per
+        // channel; within 1e30 no rounding can take a channel past the type's range.
+        let limit = T::from_f64(1e30);
+        let sum = |f: fn(&Rgb<T>) -> T| k.iter().fold(T::ZERO, |s, c| s + f(c).abs());
+        let bounded = [sum(|c| c.r), sum(|c| c.g), sum(|c| c.b)]
+            .iter()
+            .all(|s| *s <= limit);
+        Sh9Irradiance { k, bounded }
     }
 }
 
@@ -269,6 +275,9 @@ impl<T: Real> Sh9<T> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sh9Irradiance<T> {
     k: [Rgb<T>; 9],
+    /// Each channel's `sum |k|` within 1e30 (no overflow possible): the per-sample
+    /// finiteness test is skipped.
+    bounded: bool,
 }
 
 impl<T: Real> Sh9Irradiance<T> {
@@ -289,14 +298,20 @@ impl<T: Real> Sh9Irradiance<T> {
             return Rgb::splat(T::ZERO);
         };
         let [xy, yz, xz, zz, xx_yy] = n.quadratic_monomials();
-        let m = [T::ONE, n.x, n.y, n.z, xy, yz, xz, zz, xx_yy];
+        let m = [n.x, n.y, n.z, xy, yz, xz, zz, xx_yy];
         let ch = |f: fn(&Rgb<T>) -> T| {
-            let mut s = T::ZERO;
-            for (k, x) in self.k.iter().zip(m) {
+            let [k0, k @ ..] = &self.k;
+            let mut s = f(k0);
+            for (k, x) in k.iter().zip(m) {
                 s += f(k) * x;
             }
             s
         };
-        Rgb::new(ch(|c| c.r), ch(|c| c.g), ch(|c| c.b)).finite_or_zero()
+        let e = Rgb::new(ch(|c| c.r), ch(|c| c.g), ch(|c| c.b));
+        if self.bounded {
+            e
+        } else {
+            e.finite_or_zero()
+        }
     }
 }
