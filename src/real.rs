@@ -60,6 +60,18 @@ pub(crate) mod sealed {
                 a[0] * b[1] - a[1] * b[0],
             ]
         }
+        /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
+        /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
+        /// rounding), where the backend has a cheaper form than 9 products and additions in
+        /// its own arithmetic. `None` (the default: the floats) lets the caller run the
+        /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
+        /// channel, rounded down once (see its override).
+        #[cfg(feature = "sh9")]
+        #[inline(always)]
+        fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
+            let _ = (k, m);
+            None
+        }
     }
     impl Sealed for f32 {}
     impl Sealed for f64 {}
