@@ -60,6 +60,13 @@ pub(crate) mod sealed {
                 a[0] * b[1] - a[1] * b[0],
             ]
         }
+        /// `a c` for a factor `c` of at most 1 in magnitude (and `a` above the most negative
+        /// value of the type when `c = -1`): the value of `*`, bit for bit (fixed point without
+        /// its saturation test, which such a product never needs: `|a c| <= |a|`).
+        #[inline(always)]
+        fn mul_unit(a: Self, c: Self) -> Self {
+            a * c
+        }
         /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
         /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
         /// rounding), where the backend has a cheaper form than 9 products and additions in

@@ -473,6 +473,11 @@ impl super::sealed::Sealed for Fixed22 {
             Fixed22::from_bits(p(0, 1).wrapping_sub(p(1, 0))),
         ]
     }
+    /// `mul_bits_unit`: exact `floor(a c / 2^22)` without the saturation test (`|c| <= 1`).
+    #[inline(always)]
+    fn mul_unit(a: Self, c: Self) -> Self {
+        Fixed22::from_bits(mul_bits_unit(a.to_bits(), c.to_bits()))
+    }
     /// One fused dot product per channel (`dot8_split_bits`): every term's exact product
     /// summed in integers and rounded down once, where `*` and `+` round each of the 8
     /// products down (up to 8 LSB) and saturate each partial sum. The result is
@@ -563,6 +568,32 @@ fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The product by a factor of at most 1 is `*`'s bits: every `a` on a stride plus the
+    /// edges against every `c` edge and a stride of `c` over `[-2^22, 2^22]`.
+    #[test]
+    fn unit_factor_products_are_bit_identical() {
+        let one = 1i32 << 22;
+        let edges = [-one, -one + 1, -1, 0, 1, 0xFFFF, 0x10000, one - 1, one];
+        let mut a = i32::MIN as i64;
+        while a <= i32::MAX as i64 {
+            for &a in &[
+                a as i32,
+                (a as i32).wrapping_add(1),
+                i32::MAX,
+                0xFFFF,
+                -0x10000,
+            ] {
+                for c in edges.into_iter().chain((-one..=one).step_by(9973)) {
+                    if a == i32::MIN && c == -one {
+                        continue;
+                    }
+                    assert_eq!(mul_bits_unit(a, c), mul_bits(a, c), "{a} * {c}");
+                }
+            }
+            a += 1_000_003;
+        }
+    }
 
     /// The fused dot product is exactly `floor(k0 + sum k m / 2^22)`, saturated: random `k`
     /// of every magnitude (the full `i32` range included), factors over their whole range

@@ -51,6 +51,26 @@ pub(super) fn mul_bits_small(a: i32, b: i32) -> i32 {
     (ah.wrapping_mul(bh) << 10).wrapping_add(mid >> 6)
 }
 
+/// [`mul_bits`] by a factor `c` of at most 1 in magnitude (`|c| <= 2^22` raw; any `a` but
+/// `i32::MIN` when `c = -2^22`, whose product `+512` is out of range): the same exact
+/// `floor(a c / 2^22)`, which cannot saturate (`|a c| <= |a|`), so without the range test,
+/// and with the middle product `al ch` (at most `2^16 2^6`) added whole to the low word:
+/// `a c = (ah ch + (ah cl >> 16)) 2^32 + ((ah cl mod 2^16) + al ch) 2^16 + al cl`. The
+/// factor's split (`ch`, `cl`) is shared by the callers' three channels.
+#[inline(always)]
+pub(super) fn mul_bits_unit(a: i32, c: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (ch, cl) = (c >> 16, c & 0xFFFF);
+    // |ah| <= 2^15, cl < 2^16: m1 in (-2^31, 2^31); |al ch| <= 2^22.
+    let m1 = ah.wrapping_mul(cl);
+    let w = (m1 & 0xFFFF)
+        .wrapping_add(al.wrapping_mul(ch))
+        .wrapping_add(((al as u32).wrapping_mul(cl as u32) >> 16) as i32);
+    let h = ah.wrapping_mul(ch).wrapping_add(m1 >> 16);
+    // H 2^10 may wrap where the sum does not (the result fits): wrapping arithmetic is exact.
+    (h << 10).wrapping_add(w >> 6)
+}
+
 /// `k0 + sum k[i] m[i]` over `i` in `0..8` in Q22, rounded down once (exactly
 /// `floor((k0 2^22 + sum k[i] m[i]) / 2^22)` of the raw bits), saturated: a fused dot product
 /// for factors `m` of at most 1.5 in magnitude (`|m| <= 3 2^21` raw: the monomials of a unit
