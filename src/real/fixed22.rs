@@ -599,6 +599,7 @@ mod tests {
     /// of every magnitude (the full `i32` range included), factors over their whole range
     /// `|m| <= 3 2^21` (edges included), against `i64` arithmetic.
     #[test]
+    #[cfg(feature = "sh9")]
     fn fused_dot_is_exact() {
         let mut x = 0x9E37_79B9u32;
         let mut next = || {

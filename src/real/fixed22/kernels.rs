@@ -84,6 +84,7 @@ pub(super) fn mul_bits_unit(a: i32, c: i32) -> i32 {
 /// `sum k m = A 2^27 + B 2^16 + C 2^11 + D` is floored by 2^22 in three exact steps
 /// (`floor(floor(x / a) / b) = floor(x / (a b))`). 4 `MULS` a term and no saturation test
 /// per term; the 64-bit combination only when `|A| >= 2^25` (a sum beyond about 256, cold).
+#[cfg(feature = "sh9")]
 #[inline(always)]
 pub(super) fn dot8_split_bits(k0: i32, k: [i32; 8], mh: &[i32; 8], ml: &[i32; 8]) -> i32 {
     let (mut a, mut b, mut c, mut d) = (0i32, 0i32, 0i32, 0i32);
@@ -110,6 +111,7 @@ pub(super) fn dot8_split_bits(k0: i32, k: [i32; 8], mh: &[i32; 8], ml: &[i32; 8]
 }
 
 /// The large end of [`dot8_split_bits`]: `k0 + A 2^5 + floor(t / 2^6)` clamped to `i32`.
+#[cfg(feature = "sh9")]
 #[cold]
 #[inline(never)]
 fn dot8_saturated(k0: i32, a: i32, t: i32) -> i32 {
@@ -118,6 +120,7 @@ fn dot8_saturated(k0: i32, a: i32, t: i32) -> i32 {
 }
 
 /// `(m >> 11, m & 0x7FF)`: the split of a factor of [`dot8_split_bits`].
+#[cfg(feature = "sh9")]
 #[inline(always)]
 pub(super) fn split_11(m: i32) -> (i32, i32) {
     (m >> 11, m & 0x7FF)
