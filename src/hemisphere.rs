@@ -51,7 +51,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// Accuracy: 2 ULP plus the normalization of `n`. Cost: 1 normalization (none for a
     /// [`UnitVec3`]), 1 dot product: 49 instructions a call on the Cortex-M4F
-    /// in f32, 30 with a `UnitVec3`; 415 and 93 on the Cortex-M0 in `Fixed22` (QEMU, exact).
+    /// in f32, 30 with a `UnitVec3`; 411 and 89 on the Cortex-M0 in `Fixed22` (QEMU, exact).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -61,7 +61,8 @@ impl<T: Real> HemisphereLight<T> {
     #[inline]
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => (T::HALF * (T::ONE + n.dot_unit(self.axis))).clamp01(),
+            // 1/2 times at most 2 (within rounding): `mul_small`, the bits of `*`.
+            Some(n) => T::mul_small(T::HALF, T::ONE + n.dot_unit(self.axis)).clamp01(),
             None => T::ZERO,
         }
     }
@@ -202,8 +203,9 @@ impl<T: Real> SkyGround<T> {
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`. Cost: 1
     /// normalization (none for a [`UnitVec3`]), 1 dot product, 3 multiply-adds:
-    /// 81 instructions a call on the Cortex-M4F in f32, 58 with a `UnitVec3`; 546 and 228 on
-    /// the Cortex-M0 in `Fixed22` (QEMU, exact).
+    /// 81 instructions a call on the Cortex-M4F in f32, 58 with a `UnitVec3`; 494 and 170 on
+    /// the Cortex-M0 in `Fixed22` (QEMU, exact: the products by `c` skip the saturation test
+    /// that a factor of at most 1 never needs, through the crate-internal `mul_unit`).
     /// Fallback: black for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-sky_ground: target/accuracy/model-sky_ground.md -->
@@ -217,7 +219,9 @@ impl<T: Real> SkyGround<T> {
                 // sky (1 + c)/2 + ground (1 - c)/2 = mid + half c: one multiply-add a channel.
                 let c = n.dot_unit(self.up).clamp(-T::ONE, T::ONE);
                 let (m, h) = (self.mid, self.half);
-                let e = Rgb::new(m.r + h.r * c, m.g + h.g * c, m.b + h.b * c);
+                // |c| <= 1 and |h| below the type's most negative value (`new`): `mul_unit`.
+                let p = |h: T| T::mul_unit(h, c);
+                let e = Rgb::new(m.r + p(h.r), m.g + p(h.g), m.b + p(h.b));
                 // Only radiances beyond 1e30 can round a channel past the type's range.
                 if self.bounded {
                     e

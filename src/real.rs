@@ -60,6 +60,25 @@ pub(crate) mod sealed {
                 a[0] * b[1] - a[1] * b[0],
             ]
         }
+        /// `a c` for a factor `c` of at most 1 in magnitude (and `a` above the most negative
+        /// value of the type when `c = -1`): the value of `*`, bit for bit (fixed point without
+        /// its saturation test, which such a product never needs: `|a c| <= |a|`).
+        #[inline(always)]
+        fn mul_unit(a: Self, c: Self) -> Self {
+            a * c
+        }
+        /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
+        /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
+        /// rounding), where the backend has a cheaper form than 9 products and additions in
+        /// its own arithmetic. `None` (the default: the floats) lets the caller run the
+        /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
+        /// channel, rounded down once (see its override).
+        #[cfg(feature = "sh9")]
+        #[inline(always)]
+        fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
+            let _ = (k, m);
+            None
+        }
     }
     impl Sealed for f32 {}
     impl Sealed for f64 {}

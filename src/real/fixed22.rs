@@ -34,6 +34,7 @@
 //! | `a * b` | four 16 x 16-bit products combined in 32-bit integers (`H 2^10 + w/2^6`), one range test of the high part; 64-bit arithmetic only when saturating | exact floor, saturated (`tests/fixed_kernels.rs`) | ~27 instructions (was ~40 with a 64-bit combine and clamp) |
 //! | `a / b` | `u32` division for the integer part, 22 restoring-division steps for the fraction and one for rounding; no 64-bit division | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = MAX for `x > 0`, MIN (-512) for `x < 0`, `0 / 0` = 0 | 0.500 LSB |
 //! | `div_u32(n)`, `n <= 256` | the raw bits times `ceil(2^32/o)` (`n = o 2^k`, a 127-entry table) and one remainder correction | bit-identical to `/ from_u32(n)` | ~35 instead of ~290 instructions |
+//! | SH9 irradiance's `k0 + sum k[i] m[i]` (8 terms, `|m| <= 1.5`: the monomials of a unit normal) | per term 4 partial products (`k` split at bit 16, `m` at bit 11, once for the three channels) summed exactly in four `i32`s, rounded down once; 64-bit arithmetic only beyond about 256 (cold) | exact `floor`, saturated (the crate's unit tests) | 707 instead of 1434 instructions a `UnitVec3` call |
 //! | `mul_u32(n)`, `n < 512` | two 16 x 9-bit products | bit-identical to `* from_u32(n)` | |
 //! | `sqrt`, `rsqrt`, `sqrt_rsqrt` | one core: `x = m 4^j`, `m` in [1, 4); a quadratic start per eighth of `[1, 4)` (24-entry table, relative 2^-15.8), one Newton step for `1/sqrt m` in `u32` (relative 2^-29.5); `sqrt = m (1/sqrt m)`; all rounded to nearest | sqrt 1 LSB; rsqrt 1 LSB + 2^-28 relative; 0 for `x <= 0`, rsqrt MAX below `2^-18` | sqrt 0.707 LSB (every input; 0.679 on the random ones), rsqrt 0.553 |
 //! | `atan2` | octant reduction, then `pi/4 + atan((n - d)/(n + d))` above `tan(pi/8)`; the ratio `n (1/sqrt d)^2` from the square-root core; odd polynomial of degree 9 for `atan t`, `|t| <= tan(pi/8)`, in Q30 (kernel error 6.8e-9) | 1 LSB; `atan2(0, 0) = 0` | 0.542 LSB |
@@ -472,6 +473,32 @@ impl super::sealed::Sealed for Fixed22 {
             Fixed22::from_bits(p(0, 1).wrapping_sub(p(1, 0))),
         ]
     }
+    /// `mul_bits_unit`: exact `floor(a c / 2^22)` without the saturation test (`|c| <= 1`).
+    #[inline(always)]
+    fn mul_unit(a: Self, c: Self) -> Self {
+        Fixed22::from_bits(mul_bits_unit(a.to_bits(), c.to_bits()))
+    }
+    /// One fused dot product per channel (`dot8_split_bits`): every term's exact product
+    /// summed in integers and rounded down once, where `*` and `+` round each of the 8
+    /// products down (up to 8 LSB) and saturate each partial sum. The result is
+    /// `floor(k0 + sum k m)` of the Q22 monomials, saturated: within 1 LSB of their exact
+    /// value. Each monomial is split once for the three channels. 4 `MULS` and no saturation
+    /// test a term: measured in the QEMU budget (see `Sh9Irradiance::irradiance`).
+    #[cfg(feature = "sh9")]
+    #[inline(always)]
+    fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
+        // Written out (the M0 build at opt-level "s" keeps loops, through the stack).
+        let s = |i: usize| split_11(m[i].to_bits());
+        let [s0, s1, s2, s3, s4, s5, s6, s7] = [s(0), s(1), s(2), s(3), s(4), s(5), s(6), s(7)];
+        let mh = [s0.0, s1.0, s2.0, s3.0, s4.0, s5.0, s6.0, s7.0];
+        let ml = [s0.1, s1.1, s2.1, s3.1, s4.1, s5.1, s6.1, s7.1];
+        let ch = |f: fn(&crate::Rgb<Self>) -> Self| {
+            let b = |i: usize| f(&k[i]).to_bits();
+            let rest = [b(1), b(2), b(3), b(4), b(5), b(6), b(7), b(8)];
+            Fixed22::from_bits(dot8_split_bits(b(0), rest, &mh, &ml))
+        };
+        Some(crate::Rgb::new(ch(|c| c.r), ch(|c| c.g), ch(|c| c.b)))
+    }
 }
 
 /// `x^2 + y^2 + z^2` of components of at most 2 in magnitude (what `rescale_by_top` leaves):
@@ -541,6 +568,70 @@ fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The product by a factor of at most 1 is `*`'s bits: every `a` on a stride plus the
+    /// edges against every `c` edge and a stride of `c` over `[-2^22, 2^22]`.
+    #[test]
+    fn unit_factor_products_are_bit_identical() {
+        let one = 1i32 << 22;
+        let edges = [-one, -one + 1, -1, 0, 1, 0xFFFF, 0x10000, one - 1, one];
+        let mut a = i32::MIN as i64;
+        while a <= i32::MAX as i64 {
+            for &a in &[
+                a as i32,
+                (a as i32).wrapping_add(1),
+                i32::MAX,
+                0xFFFF,
+                -0x10000,
+            ] {
+                for c in edges.into_iter().chain((-one..=one).step_by(9973)) {
+                    if a == i32::MIN && c == -one {
+                        continue;
+                    }
+                    assert_eq!(mul_bits_unit(a, c), mul_bits(a, c), "{a} * {c}");
+                }
+            }
+            a += 1_000_003;
+        }
+    }
+
+    /// The fused dot product is exactly `floor(k0 + sum k m / 2^22)`, saturated: random `k`
+    /// of every magnitude (the full `i32` range included), factors over their whole range
+    /// `|m| <= 3 2^21` (edges included), against `i64` arithmetic.
+    #[test]
+    #[cfg(feature = "sh9")]
+    fn fused_dot_is_exact() {
+        let mut x = 0x9E37_79B9u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        let lim = 3 << 21;
+        for n in 0..300_000 {
+            let shift = next() % 32;
+            let k: [i32; 8] = core::array::from_fn(|_| (next() as i32) >> shift);
+            let k0 = (next() as i32) >> (next() % 32);
+            let m: [i32; 8] = core::array::from_fn(|_| match (n % 4, next() % 8) {
+                (0, 0) => lim,
+                (0, 1) => -lim,
+                (1, _) => [lim, -lim][(next() % 2) as usize],
+                _ => (next() % (2 * lim as u32 + 1)) as i32 - lim,
+            });
+            let (mut mh, mut ml) = ([0; 8], [0; 8]);
+            for i in 0..8 {
+                (mh[i], ml[i]) = split_11(m[i]);
+            }
+            let sum: i64 = (0..8).map(|i| i64::from(k[i]) * i64::from(m[i])).sum();
+            let want = (i64::from(k0) + (sum >> 22)).clamp(i32::MIN.into(), i32::MAX.into());
+            assert_eq!(
+                i64::from(dot8_split_bits(k0, k, &mh, &ml)),
+                want,
+                "{k0} {k:?} {m:?}"
+            );
+        }
+    }
 
     /// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
     /// `|a|, |b| <= 2^23` on a stride plus the edges, and the normalizations of 200 000 random

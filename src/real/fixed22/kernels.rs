@@ -51,6 +51,81 @@ pub(super) fn mul_bits_small(a: i32, b: i32) -> i32 {
     (ah.wrapping_mul(bh) << 10).wrapping_add(mid >> 6)
 }
 
+/// [`mul_bits`] by a factor `c` of at most 1 in magnitude (`|c| <= 2^22` raw; any `a` but
+/// `i32::MIN` when `c = -2^22`, whose product `+512` is out of range): the same exact
+/// `floor(a c / 2^22)`, which cannot saturate (`|a c| <= |a|`), so without the range test,
+/// and with the middle product `al ch` (at most `2^16 2^6`) added whole to the low word:
+/// `a c = (ah ch + (ah cl >> 16)) 2^32 + ((ah cl mod 2^16) + al ch) 2^16 + al cl`. The
+/// factor's split (`ch`, `cl`) is shared by the callers' three channels.
+#[inline(always)]
+pub(super) fn mul_bits_unit(a: i32, c: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (ch, cl) = (c >> 16, c & 0xFFFF);
+    // |ah| <= 2^15, cl < 2^16: m1 in (-2^31, 2^31); |al ch| <= 2^22.
+    let m1 = ah.wrapping_mul(cl);
+    let w = (m1 & 0xFFFF)
+        .wrapping_add(al.wrapping_mul(ch))
+        .wrapping_add(((al as u32).wrapping_mul(cl as u32) >> 16) as i32);
+    let h = ah.wrapping_mul(ch).wrapping_add(m1 >> 16);
+    // H 2^10 may wrap where the sum does not (the result fits): wrapping arithmetic is exact.
+    (h << 10).wrapping_add(w >> 6)
+}
+
+/// `k0 + sum k[i] m[i]` over `i` in `0..8` in Q22, rounded down once (exactly
+/// `floor((k0 2^22 + sum k[i] m[i]) / 2^22)` of the raw bits), saturated: a fused dot product
+/// for factors `m` of at most 1.5 in magnitude (`|m| <= 3 2^21` raw: the monomials of a unit
+/// vector) and any `k`.
+///
+/// Each `m` is split at bit 11 (`m = mh 2^11 + ml`, `mh` in `[-3 2^10, 3 2^10]`, `ml` in
+/// `[0, 2^11)`: [`split_11`], once per factor when several dot products share it) and each
+/// `k` at bit 16 (`k = kh 2^16 + kl`); the four partial products of every term are summed
+/// exactly in four `i32`s (`sum kh mh` at most `8 2^15 3 2^10 = 3 2^28`, `sum kh ml` below
+/// `2^29`, `sum kl mh` below `3 2^29`, `sum kl ml` below `2^30`: no overflow), and
+/// `sum k m = A 2^27 + B 2^16 + C 2^11 + D` is floored by 2^22 in three exact steps
+/// (`floor(floor(x / a) / b) = floor(x / (a b))`). 4 `MULS` a term and no saturation test
+/// per term; the 64-bit combination only when `|A| >= 2^25` (a sum beyond about 256, cold).
+#[cfg(feature = "sh9")]
+#[inline(always)]
+pub(super) fn dot8_split_bits(k0: i32, k: [i32; 8], mh: &[i32; 8], ml: &[i32; 8]) -> i32 {
+    let (mut a, mut b, mut c, mut d) = (0i32, 0i32, 0i32, 0i32);
+    // Written out (the M0 build at opt-level "s" keeps a loop, through the stack).
+    macro_rules! term {
+        ($($i:literal)*) => {$(
+            let (kh, kl) = (k[$i] >> 16, k[$i] & 0xFFFF);
+            a = a.wrapping_add(kh.wrapping_mul(mh[$i]));
+            b = b.wrapping_add(kh.wrapping_mul(ml[$i]));
+            c = c.wrapping_add(kl.wrapping_mul(mh[$i]));
+            d = d.wrapping_add(kl.wrapping_mul(ml[$i]));
+        )*};
+    }
+    term!(0 1 2 3 4 5 6 7);
+    // floor((C 2^11 + D) / 2^11), then floor((B 2^16 + C 2^11 + D) / 2^16).
+    let t = c.wrapping_add(d >> 11);
+    let t = b.wrapping_add(t >> 5);
+    if (a.wrapping_add(1 << 25) as u32) < 1 << 26 {
+        // |A 2^5| < 2^30 and |t / 2^6| < 2^24: the sum fits before the saturating add of k0.
+        ((a << 5) + (t >> 6)).saturating_add(k0)
+    } else {
+        dot8_saturated(k0, a, t)
+    }
+}
+
+/// The large end of [`dot8_split_bits`]: `k0 + A 2^5 + floor(t / 2^6)` clamped to `i32`.
+#[cfg(feature = "sh9")]
+#[cold]
+#[inline(never)]
+fn dot8_saturated(k0: i32, a: i32, t: i32) -> i32 {
+    let p = i64::from(k0) + (i64::from(a) << 5) + i64::from(t >> 6);
+    p.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+}
+
+/// `(m >> 11, m & 0x7FF)`: the split of a factor of [`dot8_split_bits`].
+#[cfg(feature = "sh9")]
+#[inline(always)]
+pub(super) fn split_11(m: i32) -> (i32, i32) {
+    (m >> 11, m & 0x7FF)
+}
+
 /// The saturating end of [`mul_bits`]: `H 2^10 + w/2^6` clamped to the `i32` range.
 #[cold]
 #[inline(never)]
