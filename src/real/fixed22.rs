@@ -542,6 +542,37 @@ fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
 mod tests {
     use super::*;
 
+    /// `recip_core(d)` is `floor(2^63 / d)` or up to 3 below it (what `div_bits` and
+    /// `atan2_q30` rely on): every `d` with `step = 1` (`-- --ignored`), a stride otherwise.
+    fn recip_core_within(step: usize) {
+        let check = |d: u32| {
+            let exact = (1u64 << 63) / u64::from(d);
+            let y = u64::from(recip_core(d));
+            assert!(y <= exact && exact - y <= 3, "{d}: {y} vs {exact}");
+        };
+        for d in ((1u32 << 31)..=u32::MAX).step_by(step) {
+            check(d);
+        }
+        for k in 0..16u32 {
+            let edge = (1u32 << 31) + (k << 27);
+            for d in edge.saturating_sub(4096).max(1 << 31)..=edge.saturating_add(4096) {
+                check(d);
+            }
+        }
+        check(u32::MAX);
+    }
+
+    #[test]
+    fn recip_core_is_within_three_units_below() {
+        recip_core_within(97);
+    }
+
+    #[test]
+    #[ignore = "every d in [2^31, 2^32): run with `-- --ignored`"]
+    fn recip_core_is_within_three_units_below_everywhere() {
+        recip_core_within(1);
+    }
+
     /// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
     /// `|a|, |b| <= 2^23` on a stride plus the edges, and the normalizations of 200 000 random
     /// vectors of every magnitude against the same formula in the type's own `*` and `+`.
