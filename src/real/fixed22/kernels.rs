@@ -213,16 +213,18 @@ pub(super) fn mul_u32_bits(a: i32, n: u32) -> i32 {
 }
 
 /// `floor(a b / 2^32)` for any `a, b` (the high word of the full 32 x 32-bit product), from
-/// four 16 x 16-bit products in `u32` arithmetic: `a b = hh 2^32 + (m1 + m2) 2^16 + ll`, and
-/// `mid = (ll >> 16) + (m1 mod 2^16) + (m2 mod 2^16) < 3 2^16` carries into the high word. No
-/// partial sum exceeds the result, so nothing wraps.
+/// four 16 x 16-bit products in `u32` arithmetic: `a b = hh 2^32 + (m1 + m2) 2^16 + ll`, with
+/// the carries of `m1 + m2` and of the low word taken explicitly. (The form with
+/// `mid = (ll >> 16) + (m1 mod 2^16) + (m2 mod 2^16)`, as [`mul_hi_u32`] but unsigned, is
+/// recognized by LLVM as a 64-bit multiply: a `__aeabi_lmul` call on ARMv6-M.)
 #[inline(always)]
 pub(super) fn mul_hi_full(a: u32, b: u32) -> u32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let (m1, m2, ll) = (ah * bl, al * bh, al * bl);
-    let mid = (ll >> 16) + (m1 & 0xFFFF) + (m2 & 0xFFFF);
-    ah * bh + (m1 >> 16) + (m2 >> 16) + (mid >> 16)
+    let (mid, carry) = m1.overflowing_add(m2);
+    let (_, low_carry) = (mid << 16).overflowing_add(ll);
+    ah * bh + (mid >> 16) + (u32::from(carry) << 16) + u32::from(low_carry)
 }
 
 /// Quadratic starts for `1/x` on the 16 intervals `[1 + i/16, 1 + (i + 1)/16)` of `[1, 2)`:
