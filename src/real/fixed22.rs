@@ -280,7 +280,7 @@ impl Real for Fixed22 {
     }
     #[inline]
     fn atan2(self, x: Self) -> Self {
-        Fixed22::from_bits(q30_to_q22(atan2_q30(self.to_bits(), x.to_bits())))
+        Fixed22::from_bits(atan2_bits(self.to_bits(), x.to_bits()))
     }
     #[inline]
     fn sin(self) -> Self {
@@ -543,7 +543,7 @@ mod tests {
     use super::*;
 
     /// `recip_core(d)` is `floor(2^63 / d)` or up to 3 below it (what `div_bits` and
-    /// `atan2_q30` rely on): every `d` with `step = 1` (`-- --ignored`), a stride otherwise.
+    /// `atan2_bits` rely on): every `d` with `step = 1` (`-- --ignored`), a stride otherwise.
     fn recip_core_within(step: usize) {
         let check = |d: u32| {
             let exact = (1u64 << 63) / u64::from(d);
