@@ -32,11 +32,11 @@
 //! | function | method | bound (tested) | measured |
 //! |---|---|---|---|
 //! | `a * b` | four 16 x 16-bit products combined in 32-bit integers (`H 2^10 + w/2^6`), one range test of the high part; 64-bit arithmetic only when saturating | exact floor, saturated (`tests/fixed_kernels.rs`) | ~27 instructions (was ~40 with a 64-bit combine and clamp) |
-//! | `a / b` | `u32` division for the integer part, 22 restoring-division steps for the fraction and one for rounding; no 64-bit division | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = MAX for `x > 0`, MIN (-512) for `x < 0`, `0 / 0` = 0 | 0.500 LSB |
+//! | `a / b` | `|b|` normalized by the leading-zero count, its reciprocal from a 16-entry quadratic start and one Newton step (`recip_core`, within 3 units of `floor(2^63/d)`, below it), the quotient estimate from one full product, then the remainder (one `MULS`) corrects it and gives the rounding bit; no division instruction or call | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = MAX for `x > 0`, MIN (-512) for `x < 0`, `0 / 0` = 0 | 0.500 LSB; ~150 instead of ~300 instructions (22 restoring steps and a `u32` division) |
 //! | `div_u32(n)`, `n <= 256` | the raw bits times `ceil(2^32/o)` (`n = o 2^k`, a 127-entry table) and one remainder correction | bit-identical to `/ from_u32(n)` | ~35 instead of ~290 instructions |
 //! | `mul_u32(n)`, `n < 512` | two 16 x 9-bit products | bit-identical to `* from_u32(n)` | |
 //! | `sqrt`, `rsqrt`, `sqrt_rsqrt` | one core: `x = m 4^j`, `m` in [1, 4); a quadratic start per eighth of `[1, 4)` (24-entry table, relative 2^-15.8), one Newton step for `1/sqrt m` in `u32` (relative 2^-29.5); `sqrt = m (1/sqrt m)`; all rounded to nearest | sqrt 1 LSB; rsqrt 1 LSB + 2^-28 relative; 0 for `x <= 0`, rsqrt MAX below `2^-18` | sqrt 0.707 LSB (every input; 0.679 on the random ones), rsqrt 0.553 |
-//! | `atan2` | octant reduction, then `pi/4 + atan((n - d)/(n + d))` above `tan(pi/8)`; the ratio `n (1/sqrt d)^2` from the square-root core; odd polynomial of degree 9 for `atan t`, `|t| <= tan(pi/8)`, in Q30 (kernel error 6.8e-9) | 1 LSB; `atan2(0, 0) = 0` | 0.542 LSB |
+//! | `atan2` | octant reduction to `t = n/d` in [0, 1], the ratio from the division's reciprocal (`recip_core`, Q31); a cubic piece of `atan` per 32nd of [0, 1] (512-byte table), each product as wide as its term needs; in Q30 (kernel error 3.4e-9) | 1 LSB; `atan2(0, 0) = 0`; `atan2(-y, x) = -atan2(y, x)` exactly | 0.516 LSB (was 0.542); ~190 instead of ~465 instructions |
 //! | `sin`, `cos` | reduction by `pi/2` with a Q38 `pi/2`, minimax polynomials of degree 7 (sin) and 8 (cos) in Q30 on `[-pi/4, pi/4]` | 1 LSB for `|x| <= 64`; within `[-1, 1]` (+2 LSB) everywhere | 0.522 LSB |
 //! | `exp` | `x = k ln 2 + r`, degree-6 minimax polynomial for `e^r` in Q30, shift by `k` | `(1 + e^x)` LSB; MAX above `9 ln 2`, 0 below -17 | 0.500 |
 //! | `ln` | `x = 2^e m`, `m` in `[1/sqrt 2, sqrt 2)`, degree-9 minimax polynomial for `ln(1 + t)` in Q30 | 1 LSB; -512 (MIN) for `x <= 0` | 0.521 LSB |
@@ -52,7 +52,7 @@
 //! Maxima: sqrt 0.707 LSB (above the 0.679 of the random inputs), rsqrt 0.553 (in units of
 //! 1 LSB + 2^-28 relative), ln 0.522 LSB, sin and cos 0.523 LSB on `|x| <= 64` (0.621 LSB on
 //! every 7th input beyond), exp 0.500 (in units of `(1 + e^x)` LSB). Division (exactly the
-//! correctly rounded quotient, ties away from zero) and `atan2` (0.548 LSB) on grids of
+//! correctly rounded quotient, ties away from zero) and `atan2` (0.515 LSB) on grids of
 //! 3.4e8 pairs each: a stride over all 2^32 numerators (and `y`) against 2579 divisors (and
 //! `x`) of every magnitude, every divisor's saturation boundary, and every pair of small
 //! integers. These take about 6 CPU-minutes and run with `-- --ignored` (a CI step of their

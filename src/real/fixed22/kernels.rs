@@ -261,7 +261,7 @@ pub(super) const RECIP_SEED: [(u32, i16, u16); 16] = [
 /// `d`: `recip_core_is_within_three_units_below`), so `y <= 2^63 / d` always. A quadratic
 /// start from [`RECIP_SEED`] (2^-16.9) and one Newton step `y (1 + (1 - d y))`, whose
 /// residual `1 - d y` (below 2^-16) is the high word of one full product: no division, about
-/// 40 Cortex-M0 instructions. The one reciprocal of the division and of `atan2`'s ratio.
+/// 50 Cortex-M0 instructions. The one reciprocal of the division and of `atan2`'s ratio.
 #[inline(always)]
 pub(super) fn recip_core(d: u32) -> u32 {
     // d >= 2^31: the index is in [0, 16) (`get`, so that no panic path is compiled).
@@ -289,7 +289,8 @@ pub(super) fn recip_core(d: u32) -> u32 {
 /// estimate `q = floor(|a| y / 2^(41 - s))` (one full product) is the exact
 /// `Q = floor(|a| 2^22 / |b|)` or up to 4 below it; the remainder `|a| 2^22 - q |b|` (one
 /// `MULS`, in wrapping `u32`: it is below `|b| + 2^24 <= 2^32`) corrects it to `Q` and gives
-/// the rounding bit. About 100 instead of 300 Cortex-M0 instructions (22 restoring steps).
+/// the rounding bit. About 150 instead of 300 Cortex-M0 instructions (22 restoring steps and a
+/// `u32` division), measured in the QEMU harness.
 pub(super) fn div_bits(a: i32, b: i32) -> i32 {
     let negative = (a < 0) != (b < 0);
     let (ua, ub) = (a.unsigned_abs(), b.unsigned_abs());
