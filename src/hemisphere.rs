@@ -51,7 +51,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// Accuracy: 2 ULP plus the normalization of `n`. Cost: 1 normalization (none for a
     /// [`UnitVec3`]), 1 dot product: 49 instructions a call on the Cortex-M4F
-    /// in f32, 30 with a `UnitVec3`; 415 and 93 on the Cortex-M0 in `Fixed22` (QEMU, exact).
+    /// in f32, 30 with a `UnitVec3`; 398 and 93 on the Cortex-M0 in `Fixed22` (QEMU, exact).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -196,7 +196,7 @@ impl<T: Real> SkyGround<T> {
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`. Cost: 1
     /// normalization (none for a [`UnitVec3`]), 1 dot product, 3 multiply-adds:
-    /// 81 instructions a call on the Cortex-M4F in f32, 58 with a `UnitVec3`; 546 and 228 on
+    /// 81 instructions a call on the Cortex-M4F in f32, 58 with a `UnitVec3`; 529 and 228 on
     /// the Cortex-M0 in `Fixed22` (QEMU, exact).
     /// Fallback: black for a zero or non-finite `n`.
     ///
