@@ -32,12 +32,12 @@
 //! | function | method | bound (tested) | measured |
 //! |---|---|---|---|
 //! | `a * b` | four 16 x 16-bit products combined in 32-bit integers (`H 2^10 + w/2^6`), one range test of the high part; 64-bit arithmetic only when saturating | exact floor, saturated (`tests/fixed_kernels.rs`) | ~27 instructions (was ~40 with a 64-bit combine and clamp) |
-//! | `a / b` | `u32` division for the integer part, 22 restoring-division steps for the fraction and one for rounding; no 64-bit division | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = MAX for `x > 0`, MIN (-512) for `x < 0`, `0 / 0` = 0 | 0.500 LSB |
+//! | `a / b` | `|b|` normalized by the leading-zero count, its reciprocal from a 16-entry quadratic start and one Newton step (`recip_core`, within 3 units of `floor(2^63/d)`, below it), the quotient estimate from one full product, then the remainder (one `MULS`) corrects it and gives the rounding bit; no division instruction or call | 0.5 LSB (correctly rounded); saturates on overflow; `x / 0` = MAX for `x > 0`, MIN (-512) for `x < 0`, `0 / 0` = 0 | 0.500 LSB; ~150 instead of ~300 instructions (22 restoring steps and a `u32` division) |
 //! | `div_u32(n)`, `n <= 256` | the raw bits times `ceil(2^32/o)` (`n = o 2^k`, a 127-entry table) and one remainder correction | bit-identical to `/ from_u32(n)` | ~35 instead of ~290 instructions |
 //! | SH9 irradiance's `k0 + sum k[i] m[i]` (8 terms, `|m| <= 1.5`: the monomials of a unit normal) | per term 4 partial products (`k` split at bit 16, `m` at bit 11, once for the three channels) summed exactly in four `i32`s, rounded down once; 64-bit arithmetic only beyond about 256 (cold) | exact `floor`, saturated (the crate's unit tests) | 707 instead of 1434 instructions a `UnitVec3` call |
 //! | `mul_u32(n)`, `n < 512` | two 16 x 9-bit products | bit-identical to `* from_u32(n)` | |
 //! | `sqrt`, `rsqrt`, `sqrt_rsqrt` | one core: `x = m 4^j`, `m` in [1, 4); a quadratic start per eighth of `[1, 4)` (24-entry table, relative 2^-15.8), one Newton step for `1/sqrt m` in `u32` (relative 2^-29.5); `sqrt = m (1/sqrt m)`; all rounded to nearest | sqrt 1 LSB; rsqrt 1 LSB + 2^-28 relative; 0 for `x <= 0`, rsqrt MAX below `2^-18` | sqrt 0.707 LSB (every input; 0.679 on the random ones), rsqrt 0.553 |
-//! | `atan2` | octant reduction, then `pi/4 + atan((n - d)/(n + d))` above `tan(pi/8)`; the ratio `n (1/sqrt d)^2` from the square-root core; odd polynomial of degree 9 for `atan t`, `|t| <= tan(pi/8)`, in Q30 (kernel error 6.8e-9) | 1 LSB; `atan2(0, 0) = 0` | 0.542 LSB |
+//! | `atan2` | octant reduction to `t = n/d` in [0, 1], the ratio from the division's reciprocal (`recip_core`, Q31); a cubic piece of `atan` per 32nd of [0, 1] (512-byte table), each product as wide as its term needs; in Q30 (kernel error 3.4e-9) | 1 LSB; `atan2(0, 0) = 0`; `atan2(-y, x) = -atan2(y, x)` exactly | 0.516 LSB (was 0.542); ~190 instead of ~465 instructions |
 //! | `sin`, `cos` | reduction by `pi/2` with a Q38 `pi/2`, minimax polynomials of degree 7 (sin) and 8 (cos) in Q30 on `[-pi/4, pi/4]` | 1 LSB for `|x| <= 64`; within `[-1, 1]` (+2 LSB) everywhere | 0.522 LSB |
 //! | `exp` | `x = k ln 2 + r`, degree-6 minimax polynomial for `e^r` in Q30, shift by `k` | `(1 + e^x)` LSB; MAX above `9 ln 2`, 0 below -17 | 0.500 |
 //! | `ln` | `x = 2^e m`, `m` in `[1/sqrt 2, sqrt 2)`, degree-9 minimax polynomial for `ln(1 + t)` in Q30 | 1 LSB; -512 (MIN) for `x <= 0` | 0.521 LSB |
@@ -53,7 +53,7 @@
 //! Maxima: sqrt 0.707 LSB (above the 0.679 of the random inputs), rsqrt 0.553 (in units of
 //! 1 LSB + 2^-28 relative), ln 0.522 LSB, sin and cos 0.523 LSB on `|x| <= 64` (0.621 LSB on
 //! every 7th input beyond), exp 0.500 (in units of `(1 + e^x)` LSB). Division (exactly the
-//! correctly rounded quotient, ties away from zero) and `atan2` (0.548 LSB) on grids of
+//! correctly rounded quotient, ties away from zero) and `atan2` (0.515 LSB) on grids of
 //! 3.4e8 pairs each: a stride over all 2^32 numerators (and `y`) against 2579 divisors (and
 //! `x`) of every magnitude, every divisor's saturation boundary, and every pair of small
 //! integers. These take about 6 CPU-minutes and run with `-- --ignored` (a CI step of their
@@ -281,7 +281,7 @@ impl Real for Fixed22 {
     }
     #[inline]
     fn atan2(self, x: Self) -> Self {
-        Fixed22::from_bits(q30_to_q22(atan2_q30(self.to_bits(), x.to_bits())))
+        Fixed22::from_bits(atan2_bits(self.to_bits(), x.to_bits()))
     }
     #[inline]
     fn sin(self) -> Self {
@@ -631,6 +631,37 @@ mod tests {
                 "{k0} {k:?} {m:?}"
             );
         }
+    }
+
+    /// `recip_core(d)` is `floor(2^63 / d)` or up to 3 below it (what `div_bits` and
+    /// `atan2_bits` rely on): every `d` with `step = 1` (`-- --ignored`), a stride otherwise.
+    fn recip_core_within(step: usize) {
+        let check = |d: u32| {
+            let exact = (1u64 << 63) / u64::from(d);
+            let y = u64::from(recip_core(d));
+            assert!(y <= exact && exact - y <= 3, "{d}: {y} vs {exact}");
+        };
+        for d in ((1u32 << 31)..=u32::MAX).step_by(step) {
+            check(d);
+        }
+        for k in 0..16u32 {
+            let edge = (1u32 << 31) + (k << 27);
+            for d in edge.saturating_sub(4096).max(1 << 31)..=edge.saturating_add(4096) {
+                check(d);
+            }
+        }
+        check(u32::MAX);
+    }
+
+    #[test]
+    fn recip_core_is_within_three_units_below() {
+        recip_core_within(97);
+    }
+
+    #[test]
+    #[ignore = "every d in [2^31, 2^32): run with `-- --ignored`"]
+    fn recip_core_is_within_three_units_below_everywhere() {
+        recip_core_within(1);
     }
 
     /// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
