@@ -1,5 +1,6 @@
 //! Exact 32 x 32 -> 64-bit products for the integer paths (the rasterizer's edge functions and
-//! attribute planes).
+//! attribute planes), and the reciprocal core ([`recip_core`]) shared by `Fixed22`'s division
+//! and `atan2` and the rasterizer's triangle setup.
 //!
 //! ARMv6-M (Cortex-M0/M0+) has only a 32 x 32 -> 32-bit `MULS`, and the compiler turns every
 //! `i64` product into a call of the 64 x 64-bit `__aeabi_lmul` (about 100 cycles in rp2040js).
@@ -121,6 +122,71 @@ pub(crate) fn dot2_shr24_by_halves(a1: i32, b1: i32, a2: i32, b2: i32) -> i32 {
     let r = (ll1 & 0xFFFF) + (ll2 & 0xFFFF);
     h.wrapping_shl(8)
         .wrapping_add(((w + (r >> 16)) >> 8) as i32)
+}
+
+/// `floor(a b / 2^32)` for any `a, b` (the high word of the full 32 x 32-bit product), from
+/// four 16 x 16-bit products in `u32` arithmetic: `a b = hh 2^32 + (m1 + m2) 2^16 + ll`, with
+/// the carries of `m1 + m2` and of the low word taken explicitly. (The form with
+/// `mid = (ll >> 16) + (m1 mod 2^16) + (m2 mod 2^16)`, as `Fixed22`'s signed `mul_hi_u32` but unsigned, is
+/// recognized by LLVM as a 64-bit multiply: a `__aeabi_lmul` call on ARMv6-M.)
+#[inline(always)]
+pub(crate) fn mul_hi_full(a: u32, b: u32) -> u32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let (m1, m2, ll) = (ah * bl, al * bh, al * bl);
+    let (mid, carry) = m1.overflowing_add(m2);
+    let (_, low_carry) = (mid << 16).overflowing_add(ll);
+    ah * bh + (mid >> 16) + (u32::from(carry) << 16) + u32::from(low_carry)
+}
+
+/// Quadratic starts for `1/x` on the 16 intervals `[1 + i/16, 1 + (i + 1)/16)` of `[1, 2)`:
+/// `(c0 2^30, c1 2^19, c2 2^19)` of `c0 + c1 t + c2 t^2`, `t` in [0, 1) across the interval
+/// (Chebyshev interpolation; relative error 2^-16.9 as evaluated). 128 bytes.
+pub(crate) const RECIP_SEED: [(u32, i16, u16); 16] = [
+    (1073734349, -32702, 1869),
+    (1010574644, -28974, 1566),
+    (954432464, -25849, 1326),
+    (904199829, -23204, 1132),
+    (858990342, -20944, 974),
+    (818086435, -18999, 844),
+    (780901002, -17313, 737),
+    (746949035, -15842, 647),
+    (715826361, -14550, 571),
+    (687193472, -13410, 506),
+    (660763090, -12399, 451),
+    (636290495, -11499, 403),
+    (613565928, -10692, 362),
+    (592408561, -9968, 327),
+    (572661675, -9315, 296),
+    (554188774, -8724, 268),
+];
+
+/// `2^63 / d` for `d` in `[2^31, 2^32)` (a Q32 reciprocal of `d / 2^31` in [1, 2)), rounded
+/// down to within 3 units: `floor(2^63 / d) - 3 <= y <= floor(2^63 / d)` (checked for every
+/// `d`: `recip_core_is_within_three_units_below`), so `y <= 2^63 / d` always. A quadratic
+/// start from [`RECIP_SEED`] (2^-16.9) and one Newton step `y (1 + (1 - d y))`, whose
+/// residual `1 - d y` (below 2^-16) is the high word of one full product: no division, about
+/// 50 Cortex-M0 instructions. The one reciprocal of `Fixed22`'s division and `atan2`'s ratio,
+/// and (corrected to the exact floor) of the rasterizer's triangle setup.
+#[inline(always)]
+pub(crate) fn recip_core(d: u32) -> u32 {
+    // d >= 2^31: the index is in [0, 16) (`get`, so that no panic path is compiled).
+    let (c0, c1, c2) = match RECIP_SEED.get(((d >> 27) & 15) as usize) {
+        Some(&e) => e,
+        None => RECIP_SEED[0],
+    };
+    let t = ((d >> 11) & 0xFFFF) as i32;
+    // |c1| < 2^15, t < 2^16: every product fits an i32.
+    let inner = i32::from(c1) + ((i32::from(c2) * t) >> 16);
+    let y0 = (c0 as i32 + ((inner * t) >> 5)).min((1 << 30) - 1) as u32;
+    let y = y0 << 2; // Q32, < 2^32 - 3
+                     // d y = 2^63 (1 - e): the high word is 2^31 (1 - e), |e| < 2^-16, so |c| < 2^15.
+    let c = (1u32 << 31).wrapping_sub(mul_hi_full(d, y)) as i32;
+    let (yh, yl) = ((y >> 16) as i32, (y & 0xFFFF) as i32);
+    let delta = (yh * c + ((yl * c) >> 16)) >> 15; // y e, Q32
+                                                   // The high word's floor can make `c` up to one unit large (`delta` up to 2 units): the
+                                                   // 2 taken off keep `y` below 2^63/d (and below 2^32 where 2^63/d is near 2^32).
+    y.wrapping_add(delta.wrapping_sub(2) as u32)
 }
 
 #[cfg(test)]
