@@ -400,13 +400,16 @@ impl<T: Real> SphereLight<T> {
         if has_limit {
             p.check_position("p")?;
         }
-        let Some((axis, d)) = (self.center - p).normalize_with_length() else {
+        let c = self.center - p;
+        // The normalization's `1 / d` (`ONE / d` for the floats, from its reciprocal square
+        // root for fixed point).
+        let Some(([x, y, z], d, inv_d)) = T::normalize3_recip([c.x, c.y, c.z]) else {
             return Err(Self::no_cap_at(p));
         };
+        let axis = Vec3::new(x, y, z);
         if !(d > self.radius) {
             return Err(Error::PointInsideSphere);
         }
-        let inv_d = T::ONE / d;
         // 0 < r < d: both ratios are positive, and only rounding can take them above 1.
         let ss = (self.radius * inv_d).min(T::ONE);
         // cos sigma from (d - r)(d + r), not from 1 - ss^2: near the sphere ss is close to 1

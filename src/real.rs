@@ -73,6 +73,19 @@ pub(crate) mod sealed {
         /// its own arithmetic. `None` (the default: the floats) lets the caller run the
         /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
         /// channel, rounded down once (see its override).
+        /// `Some((v / |v|, |v|, 1 / |v|))` for a finite nonzero `v`, `None` otherwise: the
+        /// normalization of [`Real::normalize3`] and the reciprocal of its length. This default
+        /// (the floats) is `normalize3` and one division, so its bits are theirs;
+        /// [`Fixed22`](super::Fixed22) takes the reciprocal from the reciprocal square root its
+        /// normalization computes anyway, shifted by the rescaling's power of two (no division).
+        #[inline(always)]
+        fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self)>
+        where
+            Self: super::Real,
+        {
+            <Self as super::Real>::normalize3(v)
+                .map(|(u, len)| (u, len, <Self as super::Real>::ONE / len))
+        }
         #[cfg(feature = "sh9")]
         #[inline(always)]
         fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
