@@ -73,18 +73,22 @@ pub(crate) mod sealed {
         /// its own arithmetic. `None` (the default: the floats) lets the caller run the
         /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
         /// channel, rounded down once (see its override).
-        /// `Some((v / |v|, |v|, 1 / |v|))` for a finite nonzero `v`, `None` otherwise: the
-        /// normalization of [`Real::normalize3`] and the reciprocal of its length. This default
-        /// (the floats) is `normalize3` and one division, so its bits are theirs;
-        /// [`Fixed22`](super::Fixed22) takes the reciprocal from the reciprocal square root its
-        /// normalization computes anyway, shifted by the rescaling's power of two (no division).
+        /// `Some((v / |v|, |v|, 1 / |v|, s))` for a finite nonzero `v`, `None` otherwise: the
+        /// normalization of [`Real::normalize3`], the reciprocal of its length and, where the
+        /// backend has it more precisely than `|v| |v|`, the squared length `s = Some(|v|^2)`.
+        /// This default (the floats) is `normalize3`, one division and `None`, so its bits are
+        /// theirs; [`Fixed22`](super::Fixed22) takes the reciprocal from the reciprocal square
+        /// root its normalization computes anyway, shifted by the rescaling's power of two (no
+        /// division), and the squared length from the same sum of squares, so that the three
+        /// agree with one another to its rounding.
         #[inline(always)]
-        fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self)>
+        #[allow(clippy::type_complexity)]
+        fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self, Option<Self>)>
         where
             Self: super::Real,
         {
             <Self as super::Real>::normalize3(v)
-                .map(|(u, len)| (u, len, <Self as super::Real>::ONE / len))
+                .map(|(u, len)| (u, len, <Self as super::Real>::ONE / len, None))
         }
         #[cfg(feature = "sh9")]
         #[inline(always)]

@@ -455,19 +455,22 @@ impl super::sealed::Sealed for Fixed22 {
     /// rescaled length `L`), rounded once (saturated above 512). No division: about 300 fewer
     /// Cortex-M0 instructions than `ONE / len`, and the reciprocal of the exact length rather
     /// than of the rounded one.
+    ///
+    /// The squared length is the rescaled sum of squares shifted back by `2k` (floored;
+    /// saturated to MAX): the same sum as the reciprocal's, more precise than `len * len` for
+    /// short vectors (whose rescaling is a shift left).
     #[inline(always)]
-    fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
+    fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self, Option<Self>)> {
         let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
         if m <= Self::TINY {
             return None;
         }
         let ([x, y, z], k) = rescale_by_top_exp(v, m.to_bits() as u32);
-        let d = Fixed22::from_bits(1 << (FRAC as i32 - k));
         let s2 = unit_scale(x, y, z).to_bits();
         if s2 <= 0 {
             // Not reached (the largest rescaled component is at least 1/2); `normalize3`'s
             // answer there.
-            return Some(([Self::ZERO; 3], Self::ZERO, Self::ZERO));
+            return Some(([Self::ZERO; 3], Self::ZERO, Self::ZERO, Some(Self::ZERO)));
         }
         let s2 = s2 as u32;
         let (mm, j, r) = rsqrt_core_at(s2, even_top_of_square_sum(s2));
@@ -482,10 +485,22 @@ impl super::sealed::Sealed for Fixed22 {
             let t = r >> (sh - 1);
             ((t >> 1) + (t & 1)).min(i32::MAX as u32) as i32
         };
+        // `len * d` for `d = 2^-k`: `*`'s floor (an arithmetic shift right) or its saturation
+        // to MAX (a shift left of `len < 2^24` by at most 8, then the clamp), the same bits.
+        // `s2 < 2^26` and `2 k >= -16`: the shift left fits an i64.
+        let (len, sq) = if k >= 0 {
+            (len >> k, (s2 >> (2 * k).min(31)) as i32)
+        } else {
+            (
+                ((len as u32) << (-k)).min(i32::MAX as u32) as i32,
+                ((s2 as i64) << (-2 * k)).min(i32::MAX as i64) as i32,
+            )
+        };
         Some((
             [sc(x), sc(y), sc(z)],
-            Fixed22::from_bits(len) * d,
+            Fixed22::from_bits(len),
             Fixed22::from_bits(recip),
+            Some(Fixed22::from_bits(sq)),
         ))
     }
     /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors of at most 2,
