@@ -401,9 +401,9 @@ impl<T: Real> SphereLight<T> {
             p.check_position("p")?;
         }
         let c = self.center - p;
-        // The normalization's `1 / d` (`ONE / d` for the floats, from its reciprocal square
-        // root for fixed point).
-        let Some(([x, y, z], d, inv_d, d2)) = T::normalize3_recip([c.x, c.y, c.z]) else {
+        // The direction, d, r/d and cos sigma = sqrt((d - r)(d + r))/d (see `sphere_ratios`:
+        // one division for the floats, none for fixed point).
+        let Some(([x, y, z], d, ss, cs)) = T::sphere_ratios([c.x, c.y, c.z], self.radius) else {
             return Err(Self::no_cap_at(p));
         };
         let axis = Vec3::new(x, y, z);
@@ -411,16 +411,7 @@ impl<T: Real> SphereLight<T> {
             return Err(Error::PointInsideSphere);
         }
         // 0 < r < d: both ratios are positive, and only rounding can take them above 1.
-        let ss = (self.radius * inv_d).min(T::ONE);
-        // cos sigma from (d - r)(d + r), not from 1 - ss^2: near the sphere ss is close to 1
-        // and 1 - ss would keep only the rounding of r/d.
-        // Fixed point: d^2 - r^2 from the normalization's own sum of squares (the one its
-        // `1 / d` comes from), not from the rounded `d`, which would disagree with `1 / d`.
-        let q = match d2 {
-            Some(d2) => d2 - self.radius * self.radius,
-            None => (d - self.radius) * (d + self.radius),
-        };
-        let cs = (q.sqrt() * inv_d).min(T::ONE);
+        let (ss, cs) = (ss.min(T::ONE), cs.min(T::ONE));
         Ok(SphereCap {
             axis: UnitVec3::new_unchecked(axis),
             cs,

@@ -73,22 +73,27 @@ pub(crate) mod sealed {
         /// its own arithmetic. `None` (the default: the floats) lets the caller run the
         /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
         /// channel, rounded down once (see its override).
-        /// `Some((v / |v|, |v|, 1 / |v|, s))` for a finite nonzero `v`, `None` otherwise: the
-        /// normalization of [`Real::normalize3`], the reciprocal of its length and, where the
-        /// backend has it more precisely than `|v| |v|`, the squared length `s = Some(|v|^2)`.
-        /// This default (the floats) is `normalize3`, one division and `None`, so its bits are
-        /// theirs; [`Fixed22`](super::Fixed22) takes the reciprocal from the reciprocal square
-        /// root its normalization computes anyway, shifted by the rescaling's power of two (no
-        /// division), and the squared length from the same sum of squares, so that the three
-        /// agree with one another to its rounding.
+        /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
+        /// `Some((v / |v|, |v|, r / |v|, sqrt(|v|^2 - r^2) / |v|))` for a finite nonzero `v`
+        /// (the two ratios unspecified, and finite, unless `|v| > r`), `None` otherwise. This
+        /// default (the floats) is [`Real::normalize3`], one division `1 / |v|` and the
+        /// products `r (1/|v|)` and `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|`
+        /// is close to 1 and `1 - (r/|v|)^2` would keep only its rounding), so its bits are
+        /// theirs; [`Fixed22`](super::Fixed22) computes both ratios in its normalization's
+        /// rescaled space from the reciprocal square root it computes anyway (no division).
         #[inline(always)]
-        #[allow(clippy::type_complexity)]
-        fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self, Option<Self>)>
+        fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)>
         where
             Self: super::Real,
         {
-            <Self as super::Real>::normalize3(v)
-                .map(|(u, len)| (u, len, <Self as super::Real>::ONE / len, None))
+            let (u, d) = <Self as super::Real>::normalize3(v)?;
+            if !(d > r) {
+                let zero = <Self as super::Real>::ZERO;
+                return Some((u, d, zero, zero));
+            }
+            let inv_d = <Self as super::Real>::ONE / d;
+            let cs = <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d;
+            Some((u, d, r * inv_d, cs))
         }
         #[cfg(feature = "sh9")]
         #[inline(always)]

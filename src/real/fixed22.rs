@@ -449,59 +449,39 @@ impl Real for Fixed22 {
 }
 
 impl super::sealed::Sealed for Fixed22 {
-    /// `normalize3`'s unit vector and length, bit for bit, and `1/|v|` from the same
-    /// `rsqrt_core`: its `y` (`2^32` over the square root of the rescaled sum of squares'
-    /// mantissa) shifted by the sum's exponent and the rescaling's `k` (`|v| = L 2^-k` for the
-    /// rescaled length `L`), rounded once (saturated above 512). No division: about 300 fewer
-    /// Cortex-M0 instructions than `ONE / len`, and the reciprocal of the exact length rather
-    /// than of the rounded one.
-    ///
-    /// The squared length is the rescaled sum of squares shifted back by `2k` (floored;
-    /// saturated to MAX): the same sum as the reciprocal's, more precise than `len * len` for
-    /// short vectors (whose rescaling is a shift left).
+    /// `normalize3`'s unit vector and length, bit for bit, and the ratios in its rescaled
+    /// space: with `v = V 2^-k` (`V` the rescaled vector, `S` its sum of squares and `1/|V|`
+    /// the reciprocal square root the normalization computes anyway), `r / |v| = (r 2^k)/|V|`
+    /// and `sqrt(|v|^2 - r^2)/|v| = sqrt(S - (r 2^k)^2)/|V|`: no division, and `|V|` near 1
+    /// keeps the 22 fractional bits for short vectors (whose `|v|` would lose the shift).
+    /// `r 2^k < |V|` (at most 3.5) once `|v| > r`: no overflow.
     #[inline(always)]
-    fn normalize3_recip(v: [Self; 3]) -> Option<([Self; 3], Self, Self, Option<Self>)> {
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)> {
         let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
         if m <= Self::TINY {
             return None;
         }
         let ([x, y, z], k) = rescale_by_top_exp(v, m.to_bits() as u32);
-        let s2 = unit_scale(x, y, z).to_bits();
-        if s2 <= 0 {
-            // Not reached (the largest rescaled component is at least 1/2); `normalize3`'s
-            // answer there.
-            return Some(([Self::ZERO; 3], Self::ZERO, Self::ZERO, Some(Self::ZERO)));
-        }
-        let s2 = s2 as u32;
-        let (mm, j, r) = rsqrt_core_at(s2, even_top_of_square_sum(s2));
-        let (len, inv) = (sqrt_out(mm, j, r), rsqrt_out(j, r));
-        let sc = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv));
-        // 1/|v| = 2^k / L, whose Q22 bits are `r` shifted right by `j - 1 - k` (rsqrt_out's
-        // shift with the rescaling's exponent), rounded half up.
-        let sh = j as i32 - 1 - k;
-        let recip = if sh <= 0 {
-            i32::MAX
-        } else {
-            let t = r >> (sh - 1);
-            ((t >> 1) + (t & 1)).min(i32::MAX as u32) as i32
-        };
+        let s2 = unit_scale(x, y, z);
+        let (len, inv) = unit_sqrt_rsqrt(s2);
+        let sc = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
+        let u = [sc(x), sc(y), sc(z)];
         // `len * d` for `d = 2^-k`: `*`'s floor (an arithmetic shift right) or its saturation
         // to MAX (a shift left of `len < 2^24` by at most 8, then the clamp), the same bits.
-        // `s2 < 2^26` and `2 k >= -16`: the shift left fits an i64.
-        let (len, sq) = if k >= 0 {
-            (len >> k, (s2 >> (2 * k).min(31)) as i32)
+        let len = len.to_bits();
+        let d = Fixed22::from_bits(if k >= 0 {
+            len >> k
         } else {
-            (
-                ((len as u32) << (-k)).min(i32::MAX as u32) as i32,
-                ((s2 as i64) << (-2 * k)).min(i32::MAX as i64) as i32,
-            )
-        };
-        Some((
-            [sc(x), sc(y), sc(z)],
-            Fixed22::from_bits(len),
-            Fixed22::from_bits(recip),
-            Some(Fixed22::from_bits(sq)),
-        ))
+            ((len as u32) << (-k)).min(i32::MAX as u32) as i32
+        });
+        if !(d > r) {
+            return Some((u, d, Self::ZERO, Self::ZERO));
+        }
+        // 0 <= r < d: `r 2^k` below `|V|`.
+        let rb = r.to_bits();
+        let rs = Fixed22::from_bits(if k >= 0 { rb << k } else { rb >> (-k) });
+        let cs = (s2 - rs * rs).sqrt() * inv;
+        Some((u, d, rs * inv, cs))
     }
     /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors of at most 2,
     /// no saturation test), the sum (at most 12) by wrapping additions: the same bits as
