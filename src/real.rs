@@ -75,7 +75,7 @@ pub(crate) mod sealed {
         /// channel, rounded down once (see its override).
         /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
         /// `Some((v / |v|, |v|, r / |v|, sqrt(|v|^2 - r^2) / |v|))` for a finite nonzero `v`
-        /// (the two ratios unspecified, and finite, unless `|v| > r`), `None` otherwise. This
+        /// (the two ratios unspecified unless `|v| > r`), `None` otherwise. This
         /// default (the floats) is [`Real::normalize3`], one division `1 / |v|` and the
         /// products `r (1/|v|)` and `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|`
         /// is close to 1 and `1 - (r/|v|)^2` would keep only its rounding), so its bits are
@@ -87,10 +87,6 @@ pub(crate) mod sealed {
             Self: super::Real,
         {
             let (u, d) = <Self as super::Real>::normalize3(v)?;
-            if !(d > r) {
-                let zero = <Self as super::Real>::ZERO;
-                return Some((u, d, zero, zero));
-            }
             let inv_d = <Self as super::Real>::ONE / d;
             let cs = <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d;
             Some((u, d, r * inv_d, cs))
