@@ -474,7 +474,7 @@ impl super::sealed::Sealed for Fixed22 {
         } else {
             ((len as u32) << (-k)).min(i32::MAX as u32) as i32
         });
-        if !(d > r) {
+        if d <= r {
             return Some((u, d, Self::ZERO, Self::ZERO));
         }
         // 0 <= r < d: `r 2^k` below `|V|`.
