@@ -400,18 +400,18 @@ impl<T: Real> SphereLight<T> {
         if has_limit {
             p.check_position("p")?;
         }
-        let Some((axis, d)) = (self.center - p).normalize_with_length() else {
+        let c = self.center - p;
+        // The direction, d, r/d and cos sigma = sqrt((d - r)(d + r))/d (see `sphere_ratios`:
+        // one division for the floats, none for fixed point).
+        let Some(([x, y, z], d, ss, cs)) = T::sphere_ratios([c.x, c.y, c.z], self.radius) else {
             return Err(Self::no_cap_at(p));
         };
+        let axis = Vec3::new(x, y, z);
         if !(d > self.radius) {
             return Err(Error::PointInsideSphere);
         }
-        let inv_d = T::ONE / d;
         // 0 < r < d: both ratios are positive, and only rounding can take them above 1.
-        let ss = (self.radius * inv_d).min(T::ONE);
-        // cos sigma from (d - r)(d + r), not from 1 - ss^2: near the sphere ss is close to 1
-        // and 1 - ss would keep only the rounding of r/d.
-        let cs = (((d - self.radius) * (d + self.radius)).sqrt() * inv_d).min(T::ONE);
+        let (ss, cs) = (ss.min(T::ONE), cs.min(T::ONE));
         Ok(SphereCap {
             axis: UnitVec3::new_unchecked(axis),
             cs,

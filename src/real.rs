@@ -73,6 +73,24 @@ pub(crate) mod sealed {
         /// its own arithmetic. `None` (the default: the floats) lets the caller run the
         /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
         /// channel, rounded down once (see its override).
+        /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
+        /// `Some((v / |v|, |v|, r / |v|, sqrt(|v|^2 - r^2) / |v|))` for a finite nonzero `v`
+        /// (the two ratios unspecified unless `|v| > r`), `None` otherwise. This
+        /// default (the floats) is [`Real::normalize3`], one division `1 / |v|` and the
+        /// products `r (1/|v|)` and `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|`
+        /// is close to 1 and `1 - (r/|v|)^2` would keep only its rounding), so its bits are
+        /// theirs; [`Fixed22`](super::Fixed22) computes both ratios in its normalization's
+        /// rescaled space from the reciprocal square root it computes anyway (no division).
+        #[inline(always)]
+        fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)>
+        where
+            Self: super::Real,
+        {
+            let (u, d) = <Self as super::Real>::normalize3(v)?;
+            let inv_d = <Self as super::Real>::ONE / d;
+            let cs = <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d;
+            Some((u, d, r * inv_d, cs))
+        }
         #[cfg(feature = "sh9")]
         #[inline(always)]
         fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {

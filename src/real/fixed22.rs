@@ -449,6 +449,40 @@ impl Real for Fixed22 {
 }
 
 impl super::sealed::Sealed for Fixed22 {
+    /// `normalize3`'s unit vector and length, bit for bit, and the ratios in its rescaled
+    /// space: with `v = V 2^-k` (`V` the rescaled vector, `S` its sum of squares and `1/|V|`
+    /// the reciprocal square root the normalization computes anyway), `r / |v| = (r 2^k)/|V|`
+    /// and `sqrt(|v|^2 - r^2)/|v| = sqrt(S - (r 2^k)^2)/|V|`: no division, and `|V|` near 1
+    /// keeps the 22 fractional bits for short vectors (whose `|v|` would lose the shift).
+    /// `r 2^k < |V|` (at most 3.5) once `|v| > r`: no overflow.
+    #[inline(always)]
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)> {
+        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+        if m <= Self::TINY {
+            return None;
+        }
+        let ([x, y, z], k) = rescale_by_top_exp(v, m.to_bits() as u32);
+        let s2 = unit_scale(x, y, z);
+        let (len, inv) = unit_sqrt_rsqrt(s2);
+        let sc = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
+        let u = [sc(x), sc(y), sc(z)];
+        // `len * d` for `d = 2^-k`: `*`'s floor (an arithmetic shift right) or its saturation
+        // to MAX (a shift left of `len < 2^24` by at most 8, then the clamp), the same bits.
+        let len = len.to_bits();
+        let d = Fixed22::from_bits(if k >= 0 {
+            len >> k
+        } else {
+            ((len as u32) << (-k)).min(i32::MAX as u32) as i32
+        });
+        if d <= r {
+            return Some((u, d, Self::ZERO, Self::ZERO));
+        }
+        // 0 <= r < d: `r 2^k` below `|V|`.
+        let rb = r.to_bits();
+        let rs = Fixed22::from_bits(if k >= 0 { rb << k } else { rb >> (-k) });
+        let cs = (s2 - rs * rs).sqrt() * inv;
+        Some((u, d, rs * inv, cs))
+    }
     /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors of at most 2,
     /// no saturation test), the sum (at most 12) by wrapping additions: the same bits as
     /// `Vec3::dot` (whose saturating additions never saturate there). About 40 instead of 95
@@ -547,6 +581,14 @@ fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
     if top == 0 {
         return (v, Fixed22::ONE);
     }
+    let (scaled, k) = rescale_by_top_exp(v, top);
+    (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
+}
+
+/// [`rescale_by_top`] for `top > 0`, with the exponent `k` of its power of two `2^-k` (in
+/// `[-8, 21]`) instead of the power itself.
+#[inline(always)]
+fn rescale_by_top_exp(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], i32) {
     let high = 31 - clz(top) as i32; // 0..=31
     let k = (21 - high).clamp(-8, 21);
     // Written out (not `map`, which the M0 build turned into a loop through the stack).
@@ -562,7 +604,7 @@ fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
         Fixed22::from_bits(y),
         Fixed22::from_bits(z),
     ];
-    (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
+    (scaled, k)
 }
 
 #[cfg(test)]
