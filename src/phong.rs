@@ -315,7 +315,7 @@ impl<T: Real> SphereLight<T> {
     /// <!-- BEGIN acc-phong_sphere: target/accuracy/model-phong_sphere.md -->
     /// Measured: f64 within 7.9e-14 of its reference (the independent quadrature); against f64,
     /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.6e-5 at m = 255
-    /// (ill-conditioned: 1.2e-4 at m = 255), Fixed22 4.3e-4 at m = 255; 62 580 cases in all
+    /// (ill-conditioned: 1.2e-4 at m = 255), Fixed22 1.0e-4 at m = 255; 62 580 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_sphere -->
     #[inline]

@@ -180,7 +180,7 @@ impl<T: Real> Sh9<T> {
     /// <!-- BEGIN acc-sh9_disc_irradiance: target/accuracy/model-sh9_disc_irradiance.md -->
     /// Measured: f64 within 2.7e-15 of its reference (the independent quadrature); against f64,
     /// f32 1.2e-6 (ill-conditioned: 1.0e-6), Fast32 1.2e-6 (ill-conditioned: 1.0e-6), Fixed22
-    /// 4.8e-6; 75 874 cases in all (`docs/accuracy.md`).
+    /// 3.8e-6; 75 874 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sh9_disc_irradiance -->
     pub fn disc(axis: Vec3<T>, alpha: T, colour: Rgb<T>) -> Result<Self, Error> {
         if !alpha.is_finite() {
@@ -299,7 +299,7 @@ impl<T: Real> Sh9Irradiance<T> {
     ///
     /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
     /// Measured: f64 within 1.8e-15 of its reference (the independent quadrature); against f64,
-    /// f32 6.8e-7, Fast32 6.8e-7, Fixed22 3.1e-6; 309 210 cases in all (`docs/accuracy.md`).
+    /// f32 6.8e-7, Fast32 6.8e-7, Fixed22 2.1e-6; 309 210 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sh9_irradiance -->
     #[inline]
     pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
