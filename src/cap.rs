@@ -251,8 +251,9 @@ impl<T: Real> CapLight<T> {
     ///
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
-    /// the fillet also 1 sqrt and 2 atan2: median 58 instructions a call on the Cortex-M4F in
-    /// f32, 37 with a `UnitVec3` (QEMU, exact).
+    /// the fillet (out of line) also 1 sqrt and 2 atan2: median 52 instructions a call on the
+    /// Cortex-M4F in f32, 33 with a `UnitVec3`; 468 and 163 on the Cortex-M0 in `Fixed22`
+    /// (QEMU, exact).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-cap_lambert: target/accuracy/model-cap_lambert.md -->
@@ -300,7 +301,11 @@ impl<T: Real> CapLight<T> {
     /// `[cap_lambert_hermite]`: Snyder's two-segment Hermite approximation of
     /// [`CapLight::lambert`]; its error against the exact model is tabulated in the README.
     ///
-    /// Cost: 1 normalization, 1 cross product, 1 sqrt, 1 atan2, a cubic.
+    /// Cost: 1 normalization (none for a [`UnitVec3`]) and the chord's squared length
+    /// `|n - axis|^2` (`c = 1 - |n - axis|^2/2`, accurate near 1); only in the fillet (out of
+    /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 61 instructions a call
+    /// on the Cortex-M4F in f32, 39 with a `UnitVec3`; 482 and 175 on the Cortex-M0 in
+    /// `Fixed22` (QEMU, exact; before the fillet test, 179/158 and 1499/1167).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-cap_lambert_hermite: target/accuracy/model-cap_lambert_hermite.md -->
@@ -453,9 +458,12 @@ impl<T: Real> SphereLight<T> {
 
     /// `[sphere_lambert]`: exact Lambertian irradiance at `p` with normal `n`, normalized.
     ///
-    /// Accuracy: measured, below. Cost: 2 normalizations, 1 division, 1 sqrt; in the
-    /// fillet also 1 sqrt and 2 atan2. Fallback: 0 for a point inside or on the sphere, or a
-    /// zero or non-finite input.
+    /// Accuracy: measured, below. Cost: 2 normalizations, 1 division, 1 sqrt (fixed point: no
+    /// division, both ratios from the normalization's reciprocal square root); in the
+    /// fillet (out of line) also 1 sqrt and 2 atan2: median 109 instructions a call on the
+    /// Cortex-M4F in f32, 100 with a `UnitVec3`; 1180 and 872 on the Cortex-M0 in `Fixed22`
+    /// (QEMU, exact). Fallback: 0 for a point inside or on the sphere, or a zero or
+    /// non-finite input.
     ///
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->
     /// Measured: f64 within 4.4e-16 of its reference (the independent quadrature); against f64,
@@ -483,7 +491,8 @@ impl<T: Real> SphereLight<T> {
     /// `[sphere_lambert_hermite]`: Snyder's Hermite approximation with sigma from the sphere
     /// (the cubics are rebuilt per sample, since sigma changes with `p`).
     ///
-    /// Cost: that of [`SphereLight::lambert`] plus 2 atan2 and ~20 multiply-adds.
+    /// Cost: that of [`SphereLight::lambert`] outside the fillet (the value needs only
+    /// `n.axis` there); in the fillet 2 atan2 and ~20 multiply-adds more.
     /// Fallback: as [`SphereLight::lambert`].
     ///
     /// <!-- BEGIN acc-sphere_lambert_hermite: target/accuracy/model-sphere_lambert_hermite.md -->
