@@ -130,8 +130,8 @@ struct Geometry {
 impl Geometry {
     /// From the snapped vertices (positive orientation), twice the area `d > 0` and the
     /// anchor pixel. `1/d` is one division (a 31-bit reciprocal `r` with `1/d = r 2^-k` to
-    /// 2^-30 relative: 31 restoring steps in 32-bit integers when `d < 2^32`, a 64-bit
-    /// division beyond), every weight a product and a shift: `dl1/dX = f2/d`, `dl1/dY =
+    /// 2^-30 relative: `recip62`, the crate's reciprocal core and one exact correction, when
+    /// `d < 2^32`; a 64-bit division beyond), every weight a product and a shift: `dl1/dX = f2/d`, `dl1/dY =
     /// -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with `(e, f)`
     /// the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy` (vertex 0
     /// has `l1 = l2 = 0`).

@@ -231,8 +231,8 @@ pub(crate) fn recip_q31(k: u32) -> i32 {
 }
 
 /// `a / n` in Q22 for an integer `n` in [1, 256]: bit-identical to `div_bits(a, n 2^22)` (the
-/// quotient `a / n` of the raw bits, rounded half away from zero), without its 22 restoring
-/// steps. With `n = o 2^k` (`o` odd), `q = floor(|a| ceil(2^32/o) / 2^(32 + k))` is
+/// quotient `a / n` of the raw bits, rounded half away from zero), without its reciprocal
+/// core and full product. With `n = o 2^k` (`o` odd), `q = floor(|a| ceil(2^32/o) / 2^(32 + k))` is
 /// `floor(|a|/n)` or one more (the reciprocal's excess times `|a| <= 2^31` is below 1/2); the
 /// remainder `|a| - q n` (one `MULS`) corrects it and gives the rounding bit. Other `n`: `div_bits`.
 #[inline]
