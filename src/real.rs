@@ -67,12 +67,6 @@ pub(crate) mod sealed {
         fn mul_unit(a: Self, c: Self) -> Self {
             a * c
         }
-        /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
-        /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
-        /// rounding), where the backend has a cheaper form than 9 products and additions in
-        /// its own arithmetic. `None` (the default: the floats) lets the caller run the
-        /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
-        /// channel, rounded down once (see its override).
         /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
         /// `Some((v / |v|, |v|, r / |v|, sqrt(|v|^2 - r^2) / |v|))` for a finite nonzero `v`
         /// (the two ratios unspecified unless `|v| > r`), `None` otherwise. This
@@ -91,6 +85,12 @@ pub(crate) mod sealed {
             let cs = <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d;
             Some((u, d, r * inv_d, cs))
         }
+        /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
+        /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
+        /// rounding), where the backend has a cheaper form than 9 products and additions in
+        /// its own arithmetic. `None` (the default: the floats) lets the caller run the
+        /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
+        /// channel, rounded down once (see its override).
         #[cfg(feature = "sh9")]
         #[inline(always)]
         fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
