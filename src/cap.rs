@@ -382,6 +382,14 @@ impl<T: Real> SphereLight<T> {
         Ok(SphereLight { center, radius })
     }
 
+    /// A sphere from parts the caller has validated: [`crate::world`]'s rescaled sphere
+    /// (`radius` >= 0, coordinates within `[-4, 4]`; a radius rounded to 0 gives a cap of
+    /// zero size, hence 0).
+    #[inline(always)]
+    pub(crate) fn from_parts(center: Vec3<T>, radius: T) -> Self {
+        SphereLight { center, radius }
+    }
+
     /// The centre.
     pub fn center(&self) -> Vec3<T> {
         self.center

@@ -40,7 +40,8 @@ pub enum Error {
     ExponentOutOfRange,
     /// The named position parameter has a coordinate beyond
     /// [`crate::Real::COORDINATE_LIMIT`] of the scalar type (only the fixed-point type has a
-    /// limit: 4, so that products of point differences stay inside its range).
+    /// limit: 4, so that products of point differences stay inside its range), or beyond the
+    /// world format's `2^30` ([`crate::WorldPoint::LIMIT`], every backend).
     OutOfRange(&'static str),
     /// A shading point on the segment of a line light (to within the precision of the scalar
     /// type: closer than `Real::TINY` times the light's distance scale).
@@ -100,7 +101,7 @@ impl fmt::Display for Error {
             Error::AlphaOutOfRange => f.write_str("alpha is outside [0, pi]"),
             Error::ExponentOutOfRange => f.write_str("Phong exponent m is too large"),
             Error::OutOfRange(p) => {
-                write!(f, "{p} is outside the coordinate range of the scalar type (|x| <= 4 for the fixed-point type)")
+                write!(f, "{p} is outside the coordinate range (|x| <= 4 for the fixed-point type's own coordinates, |x| < 2^30 for world coordinates)")
             }
             Error::PointOnSegment => f.write_str("shading point is on the segment"),
             Error::Unresolved(p) => write!(

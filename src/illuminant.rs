@@ -516,6 +516,7 @@ mod parallelogram_impls {
                 &verts,
                 p,
                 n,
+                T::ZERO,
                 #[inline(always)]
                 |e| sum += e.lambert_term(n),
             );

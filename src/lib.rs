@@ -93,6 +93,8 @@ pub mod unit;
 pub mod vec3;
 #[cfg(any(feature = "raster", feature = "fixed"))]
 mod wide;
+#[cfg(any(feature = "cap", feature = "polygon"))]
+pub mod world;
 
 #[cfg(feature = "cap")]
 pub use cap::{CapLight, SphereLight};
@@ -117,6 +119,12 @@ pub use sh9::{Environment, Sh9, Sh9Irradiance};
 pub use shaping::{DistanceFalloff, LightFrame, Superellipse, Uberlight};
 pub use unit::{Direction, UnitVec3};
 pub use vec3::{Rgb, Vec3};
+#[cfg(any(feature = "cap", feature = "polygon"))]
+pub use world::WorldPoint;
+#[cfg(feature = "polygon")]
+pub use world::WorldPolygonLight;
+#[cfg(feature = "cap")]
+pub use world::WorldSphereLight;
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

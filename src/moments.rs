@@ -130,7 +130,8 @@
 
 use crate::lobe::MAX_EXPONENT;
 use crate::polygon::{
-    arc_axis_form, cos_power_sums, for_each_clipped_edge, ApexFan, ClippedEdge, PolygonLight,
+    arc_axis_form, cos_power_sums, for_each_clipped_edge, near_limit, ApexFan, ClippedEdge,
+    PolygonLight, LAMBERT_NEAR_LOG2,
 };
 use crate::{Error, Real, UnitVec3, Vec3};
 
@@ -466,7 +467,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             }
             acc.add(arc);
         };
-        for_each_clipped_edge(self.vertices(), p, w, |e| {
+        for_each_clipped_edge(self.vertices(), p, w, T::ZERO, |e| {
             second.push(
                 Arc {
                     ua: e.ua,
@@ -518,7 +519,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         // Fixed point within its rounding of the plane over the face: unresolved (the moment
         // jumps from 0 in the plane to the hemisphere's just off it).
         if T::RESOLUTION > T::ZERO && self.in_plane(p) {
-            self.resolved_in_plane(p)?;
+            self.resolved_in_plane(p, near_limit::<T>(LAMBERT_NEAR_LOG2))?;
         }
         if m == 0 {
             return Ok(self.signed_solid_angle_abs(p));
@@ -611,7 +612,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         let w = w.try_normalize("w")?;
         let v = v.try_normalize("v")?;
         if T::RESOLUTION > T::ZERO && self.in_plane(p) {
-            self.resolved_in_plane(p)?;
+            self.resolved_in_plane(p, near_limit::<T>(LAMBERT_NEAR_LOG2))?;
         }
         let scale = T::from_u32(m + 2);
         Ok(self.raw_moment_sum(p, w, v, m, tol * scale) / scale)

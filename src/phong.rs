@@ -62,8 +62,8 @@ use crate::hemisphere::HemisphereLight;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
 use crate::polygon::{
-    arc_axis_form, cos_power_sums, for_each_clipped_edge, products_in_range, ClippedEdge,
-    PolygonLight,
+    arc_axis_form, cos_power_sums, for_each_clipped_edge, near_limit, phong_near_log2,
+    products_in_range, ClippedEdge, PolygonLight,
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
@@ -343,7 +343,8 @@ fn phong_edge_terms<T: Real>(
     // An edge seen end-on (G = 0): x = 0 contributes nothing.
     let (gu, glen) = g.normalize_with_length()?;
     let gu = UnitVec3::new_unchecked(gu);
-    // G and ua.ub computed from subnormal or overflowing products: rescale (the caller).
+    // G and ua.ub computed from subnormal or overflowing products (fixed point: too small to
+    // keep their precision): rescale (the caller).
     if !products_in_range(glen, dot.abs()) {
         return None;
     }
@@ -369,6 +370,32 @@ fn phong_edge_terms<T: Real>(
     let (sum, last) = cos_power_sums(m - 1, x, cos_x, sin_x, ra, rp, f, None);
     Some((w, rg * (sum + last)))
 }
+
+/// `(G, ua.ub)` of an edge for [`phong_edge_terms`] from its own products `g` and `dot`, except where fixed point
+/// would lose `G` to rounding: a `G` whose largest component is below `2^-4` ([`EXACT_G_BELOW_LOG2`]) (a
+/// point near the edge's line, or a short edge) is formed exactly and scaled
+/// ([`Real`]'s sealed `cross_dot_scaled`; the terms are scale-free). Measured on points near
+/// the boundary of random polygons (`tests/fixed_near.rs`): at `m = 128..255`, 1.8e-3 with the
+/// rounded `G` against 4.3e-4 exact, `p` 2^-8 from the boundary.
+#[cfg(feature = "polygon")]
+#[inline(always)]
+fn exact_if_small<T: Real>(e: &ClippedEdge<T>, g: Vec3<T>, dot: T) -> (Vec3<T>, T) {
+    if T::RESOLUTION > T::ZERO && g.max_abs() < T::from_fixed_i32(1, EXACT_G_BELOW_LOG2) {
+        if let Some(([x, y, z], dot)) = T::cross_dot_scaled(
+            [e.ua.x, e.ua.y, e.ua.z],
+            [e.ub.x, e.ub.y, e.ub.z],
+            [e.d.x, e.d.y, e.d.z],
+        ) {
+            return (Vec3::new(x, y, z), dot);
+        }
+    }
+    (g, dot)
+}
+
+/// [`exact_if_small`]'s threshold, `2^-4`: a `G` that small keeps under 18 bits of its own in
+/// fixed point's absolute rounding.
+#[cfg(feature = "polygon")]
+const EXACT_G_BELOW_LOG2: u32 = 4;
 
 /// [`phong_edge_terms`] from the edge scaled by a power of two (exact; the terms are
 /// scale-free): the cold path for an edge whose coordinates or products leave the normal range
@@ -411,11 +438,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         p.check_position("p")?;
         let ru = r.try_unit("r")?;
         let r = ru.into_inner();
+        let m = lobe.m;
+        let r_min = near_limit::<T>(phong_near_log2(m));
         if self.in_plane(p) {
-            self.resolved_in_plane(p)?;
+            self.resolved_in_plane(p, r_min)?;
             return Ok(T::ZERO);
         }
-        let m = lobe.m;
+        let mut beside = false;
         let even = m & 1 == 0;
         let mut sum = T::ZERO;
         // The solid angle of the clipped projection (even m), as `ApexFan` sums it, from the
@@ -424,7 +453,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         // The last edge's end, its direction and r . direction: the next edge starts there
         // unless a horizon arc came between, so each vertex is normalized once.
         let mut last: Option<(Vec3<T>, UnitVec3<T>, T)> = None;
-        for_each_clipped_edge(self.vertices(), p, r, |e| {
+        let near = for_each_clipped_edge(self.vertices(), p, r, r_min, |e| {
             if e.horizon {
                 // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
                 // m the fan's triangle is the same signed arc.
@@ -445,14 +474,19 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             // (below TINY or beyond 1/TINY in absolute terms): the same edge scaled by a power
             // of two (cold; the terms are scale-free). What still has no direction then (an
             // edge shorter than TINY relative to its distance, seen end-on) is dropped from
-            // the J terms and the fan alike. (Fixed point: nothing to rescale, decided at
-            // compile time.)
+            // the J terms and the fan alike.
             let terms = match (start, end) {
                 (Some(a), Some((_, rb))) => {
-                    phong_edge_terms(e.ua.cross(e.d), e.ua.dot(e.ub), a, rb, ru, m)
+                    let (g, dot) = (e.ua.cross(e.d), e.ua.dot(e.ub));
+                    if T::RESOLUTION > T::ZERO {
+                        beside |= e.beside(g, dot, r_min);
+                    }
+                    let (g, dot) = exact_if_small(&e, g, dot);
+                    phong_edge_terms(g, dot, a, rb, ru, m)
                 }
                 _ => None,
             };
+            // (Fixed point never needs it: `exact_if_small` hands it `G` and `ua.ub` in range.)
             let Some((w, j)) = terms.or_else(|| {
                 if T::RESOLUTION > T::ZERO {
                     None
@@ -467,6 +501,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             }
             sum += j;
         });
+        if T::RESOLUTION > T::ZERO && (near || beside) {
+            return Err(Error::Unresolved("p"));
+        }
         if even {
             sum += fan;
         }

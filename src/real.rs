@@ -91,6 +91,47 @@ pub(crate) mod sealed {
         /// its own arithmetic. `None` (the default: the floats) lets the caller run the
         /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
         /// channel, rounded down once (see its override).
+        /// `(ua x d, ua.ub)` scaled by one positive factor (a power of two), where the backend
+        /// can form them exactly: `None` (the default: the floats, whose products are
+        /// relative anyway) lets the caller take its own products. [`Fixed22`](super::Fixed22)
+        /// forms every product and sum exactly in 64 bits (coordinates below `2^7`; beyond,
+        /// `None`), then keeps the 23 bits from the largest's leading bit: `G` and `ua.ub` to a
+        /// relative `2^-22` however much the differences cancel (a point near an edge's line,
+        /// where `G` is small).
+        #[cfg(feature = "polygon")]
+        #[inline(always)]
+        fn cross_dot_scaled(
+            ua: [Self; 3],
+            ub: [Self; 3],
+            d: [Self; 3],
+        ) -> Option<([Self; 3], Self)> {
+            let _ = (ua, ub, d);
+            None
+        }
+        /// `true` if every component of `v` is below `r` in magnitude (`r > 0`): the polygon
+        /// kernels' test of a point's distance ([`crate::polygon`]'s `near_limit`). This
+        /// default compares the largest magnitude; [`Fixed22`](super::Fixed22) tests each
+        /// component's raw bits against `(-r, r)` with one unsigned comparison (a saturated
+        /// component counts as far).
+        #[cfg(feature = "polygon")]
+        #[inline(always)]
+        fn all_within(v: [Self; 3], r: Self) -> bool
+        where
+            Self: super::Real,
+        {
+            let m = <Self as super::Real>::max(
+                <Self as super::Real>::max(
+                    <Self as super::Real>::abs(v[0]),
+                    <Self as super::Real>::abs(v[1]),
+                ),
+                <Self as super::Real>::abs(v[2]),
+            );
+            m < r
+        }
+        /// `x 2^-60` rounded to the type (to nearest; fixed point half up), for `|x| <= 2^62`:
+        /// a coordinate of [`crate::world`]'s rescaled differences, whose largest magnitude is
+        /// in `[2, 4]`. Every backend overrides it (no f64 on the way).
+        fn from_q60(x: i64) -> Self;
         #[cfg(feature = "sh9")]
         #[inline(always)]
         fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
@@ -98,9 +139,25 @@ pub(crate) mod sealed {
             None
         }
     }
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
-    impl Sealed for super::Fast32 {}
+    impl Sealed for f32 {
+        #[inline(always)]
+        fn from_q60(x: i64) -> Self {
+            // One rounding (i64 to f32), then an exact product by a power of two.
+            x as f32 * (1.0 / (1u64 << 60) as f32)
+        }
+    }
+    impl Sealed for f64 {
+        #[inline(always)]
+        fn from_q60(x: i64) -> Self {
+            x as f64 * (1.0 / (1u64 << 60) as f64)
+        }
+    }
+    impl Sealed for super::Fast32 {
+        #[inline(always)]
+        fn from_q60(x: i64) -> Self {
+            super::Fast32(<f32 as Sealed>::from_q60(x))
+        }
+    }
 }
 
 /// A real-number type the models are generic over (sealed; see the module docs).

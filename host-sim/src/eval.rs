@@ -28,7 +28,7 @@ use std::io::{self, BufRead, Write};
 
 use arealight::{
     CapLight, Fast32, Fixed22, HemisphereLight, OvercastSky, PhongLobe, PolygonLight, Real, Rgb,
-    Sh9, SkyGround, SphereLight, Vec3,
+    Sh9, SkyGround, SphereLight, Vec3, WorldPoint, WorldPolygonLight, WorldSphereLight,
 };
 use clap::{Args, ValueEnum};
 use serde::Serialize;
@@ -536,6 +536,25 @@ impl<'a> Params<'a> {
         }
     }
 
+    /// A point in world coordinates (`arealight::world`: I32F32, |x| < 2^30).
+    pub fn point(&self, name: &'static str) -> EvalResult<WorldPoint> {
+        Ok(WorldPoint::from_f64(triple(self.get(name)?, name)?, name)?)
+    }
+
+    /// An array of points in world coordinates.
+    pub fn points(&self, name: &'static str) -> EvalResult<Vec<WorldPoint>> {
+        match self.get(name)? {
+            Value::Array(a) => a
+                .iter()
+                .map(|v| Ok(WorldPoint::from_f64(triple(v, name)?, name)?))
+                .collect(),
+            other => Err(EvalError(format!(
+                "{name}: expected an array of vectors, got {}",
+                kind(other)
+            ))),
+        }
+    }
+
     /// Nine colours.
     pub fn coeffs<T: Real>(&self, name: &str) -> EvalResult<[Rgb<T>; 9]> {
         match self.get(name)? {
@@ -624,6 +643,26 @@ fn colour<T: Real>(c: Rgb<T>) -> Answer {
     Answer::Rgb(c.to_f64())
 }
 
+/// The models the fixed-point backend takes through world coordinates (`arealight::world`):
+/// their positions (`p`, `center`, `radius`, `verts`) in I32F32, `|x| < 2^30`, with no limit of
+/// the fixed-point format's own; the floats take the plain models.
+pub const WORLD_MODELS: [&str; 5] = [
+    "sphere_lambert",
+    "sphere_lambert_hermite",
+    "phong_sphere",
+    "polygon_lambert",
+    "phong_polygon",
+];
+
+/// The parameters of [`WORLD_MODELS`] read as world coordinates.
+const WORLD_PARAMS: [&str; 4] = ["p", "center", "radius", "verts"];
+
+/// `true` for the backends that take [`WORLD_MODELS`] through world coordinates: those with a
+/// coordinate limit (fixed point).
+fn in_world<T: Real>() -> bool {
+    T::COORDINATE_LIMIT < f64::MAX
+}
+
 /// Evaluates model `def` with the parameters `p` on backend `T`: the protocol's one dispatch.
 ///
 /// # Errors
@@ -667,6 +706,16 @@ pub fn eval_model<T: Real>(def: &'static ModelDef, p: &Params) -> EvalResult<Ans
                 cap.lambert_hermite(n)
             })
         }
+        "sphere_lambert" | "sphere_lambert_hermite" if in_world::<T>() => {
+            let (pt, n) = (p.point("p")?, p.vec3::<T>("n")?);
+            let (center, radius) = (p.point("center")?, p.f64("radius")?);
+            let sphere = WorldSphereLight::<T>::new(center, radius)?;
+            scalar(if model == "sphere_lambert" {
+                sphere.try_lambert(pt, n)?
+            } else {
+                sphere.try_lambert_hermite(pt, n)?
+            })
+        }
         "sphere_lambert" | "sphere_lambert_hermite" => {
             let (pt, n) = (p.vec3::<T>("p")?, p.vec3::<T>("n")?);
             let (center, radius) = (p.vec3::<T>("center")?, p.f64("radius")?);
@@ -676,6 +725,11 @@ pub fn eval_model<T: Real>(def: &'static ModelDef, p: &Params) -> EvalResult<Ans
             } else {
                 sphere.try_lambert_hermite(pt, n)?
             })
+        }
+        "polygon_lambert" if in_world::<T>() => {
+            let (pt, n, verts) = (p.point("p")?, p.vec3::<T>("n")?, p.points("verts")?);
+            let poly = WorldPolygonLight::<T, MAX_VERTICES>::new(&verts)?;
+            scalar(poly.try_lambert(pt, n)?)
         }
         "polygon_lambert" => {
             let (pt, n, verts) = (p.vec3::<T>("p")?, p.vec3::<T>("n")?, p.verts::<T>("verts")?);
@@ -704,12 +758,26 @@ pub fn eval_model<T: Real>(def: &'static ModelDef, p: &Params) -> EvalResult<Ans
             let lobe = PhongLobe::new(m)?;
             scalar(cap.phong(&lobe, check_dir(r, "r")?))
         }
+        "phong_sphere" if in_world::<T>() => {
+            let (pt, r, center) = (p.point("p")?, p.vec3::<T>("r")?, p.point("center")?);
+            let (radius, m) = (p.f64("radius")?, p.exponent::<T>("m")?);
+            let sphere = WorldSphereLight::<T>::new(center, radius)?;
+            let lobe = PhongLobe::new(m)?;
+            scalar(sphere.try_phong(&lobe, pt, r)?)
+        }
         "phong_sphere" => {
             let (pt, r, center) = (p.vec3::<T>("p")?, p.vec3::<T>("r")?, p.vec3::<T>("center")?);
             let (radius, m) = (p.f64("radius")?, p.exponent::<T>("m")?);
             let sphere = SphereLight::new(center, T::from_f64(radius))?;
             let lobe = PhongLobe::new(m)?;
             scalar(sphere.try_phong(&lobe, pt, r)?)
+        }
+        "phong_polygon" if in_world::<T>() => {
+            let (pt, r, verts) = (p.point("p")?, p.vec3::<T>("r")?, p.points("verts")?);
+            let m = p.exponent::<T>("m")?;
+            let poly = WorldPolygonLight::<T, MAX_VERTICES>::new(&verts)?;
+            let lobe = PhongLobe::new(m)?;
+            scalar(poly.try_phong(&lobe, pt, r)?)
         }
         "phong_polygon" => {
             let (pt, r, verts) = (p.vec3::<T>("p")?, p.vec3::<T>("r")?, p.verts::<T>("verts")?);
@@ -965,12 +1033,16 @@ fn inputs_fit<T: Real>(def: &ModelDef, map: &Map<String, Value>) -> EvalResult<(
 
 /// The fixed-point type cannot hold NaN, infinities or magnitudes of 512 and more: such an
 /// input gets the error the float backends give for a non-finite value, or a range error,
-/// instead of a silently saturated value. (Positions beyond the fixed path's coordinate limit
-/// are refused by the library itself.)
+/// instead of a silently saturated value. The positions of [`WORLD_MODELS`] are world
+/// coordinates, whose range (`|x| < 2^30`) [`arealight::WorldPoint`] checks.
 fn fixed_inputs_representable(def: &ModelDef, map: &Map<String, Value>) -> EvalResult<()> {
+    let world = WORLD_MODELS.contains(&def.id);
     each_number(def, map, &mut |name, x| {
         if !x.is_finite() {
             Err(arealight::Error::NotFinite(name).into())
+        } else if world && WORLD_PARAMS.contains(&name) {
+            // World coordinates: their own range (2^30), checked by `WorldPoint`.
+            Ok(())
         } else if x.abs() >= 512.0 {
             Err(EvalError(format!(
                 "{name} is outside the range of the fixed-point backend (|x| < 512)"

@@ -846,8 +846,8 @@ fn fixed_backend_answers_its_models_within_1_1024_and_refuses_the_others() {
         (json!({"id": 2, "model": "hemi_const", "n": [0, 0, 1e6], "axis": [0, 0, 1]}),
          "n is outside the range of the fixed-point backend (|x| < 512)"),
         (json!({"id": 3, "model": "polygon_lambert", "p": [0, 0, 0], "n": [0, 0, 1],
-                "verts": [[-1, -1, 5], [1, -1, 5], [1, 1, 5]]}),
-         "verts is outside the coordinate range of the scalar type (|x| <= 4 for the fixed-point type)"),
+                "verts": [[-1, -1, 2e9], [1, -1, 2e9], [1, 1, 2e9]]}),
+         "verts is outside the coordinate range (|x| <= 4 for the fixed-point type's own coordinates, |x| < 2^30 for world coordinates)"),
         (json!({"id": 4, "model": "phong_cap", "r": [0, 0, 1], "axis": [0, 0, 1], "sigma": 0.3, "m": 256}),
          "Phong exponent m is too large: 256 > 255, the largest this backend accepts"),
     ];

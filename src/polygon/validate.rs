@@ -28,7 +28,7 @@ pub(super) fn validate_polygon<T: Real>(verts: &[Vec3<T>]) -> Result<[f64; 3], E
 }
 
 /// [`validate_polygon`] on the `n` vertices `vert(i)` (in f64) of a backend of resolution `res`.
-fn validate_polygon_f64(
+pub(crate) fn validate_polygon_f64(
     n: usize,
     vert: &dyn Fn(usize) -> [f64; 3],
     res: f64,

@@ -449,6 +449,57 @@ impl Real for Fixed22 {
 }
 
 impl super::sealed::Sealed for Fixed22 {
+    /// `-r < c < r` for each component as `(c + r) as u32 < 2r - 1` (wrapping: a component
+    /// at `i32::MIN` or `MAX` falls outside for any `r` below 256; `r <= 0`: `false`).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn all_within(v: [Self; 3], r: Self) -> bool {
+        let r = r.to_bits();
+        let span = (2 * r as u32).wrapping_sub(1);
+        let inside = |c: Self| (c.to_bits().wrapping_add(r) as u32).wrapping_sub(1) < span;
+        r > 0 && inside(v[0]) && inside(v[1]) && inside(v[2])
+    }
+    /// Exact products and sums in `i64` (every coordinate below `2^7` in magnitude, as the
+    /// kernels' are: products below `2^58`, sums below `2^60`; larger coordinates: `None`, and
+    /// the caller keeps its rounded products), then one shift that puts the largest magnitude's
+    /// leading bit at bit 22 (`[1, 2)`): truncated, relative `2^-22`. Not inlined: the cold
+    /// path of the polygon edges where `G` is small (a point near an edge's line, a short edge).
+    #[cfg(feature = "polygon")]
+    #[inline(never)]
+    fn cross_dot_scaled(ua: [Self; 3], ub: [Self; 3], d: [Self; 3]) -> Option<([Self; 3], Self)> {
+        const LIM: u32 = 1 << 29;
+        let fits = |v: &[Self; 3]| v.iter().all(|c| c.to_bits().unsigned_abs() < LIM);
+        if !(fits(&ua) && fits(&ub) && fits(&d)) {
+            return None;
+        }
+        let p = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
+        let g = [
+            p(ua[1], d[2]) - p(ua[2], d[1]),
+            p(ua[2], d[0]) - p(ua[0], d[2]),
+            p(ua[0], d[1]) - p(ua[1], d[0]),
+        ];
+        let dot = p(ua[0], ub[0]) + p(ua[1], ub[1]) + p(ua[2], ub[2]);
+        let top = g
+            .iter()
+            .fold(dot.unsigned_abs(), |m, v| m | v.unsigned_abs());
+        if top == 0 {
+            return None;
+        }
+        // Leading bit of `top` at 63 - lz (at most 59); move it to bit 22.
+        let sh = 63 - top.leading_zeros() as i32 - 22;
+        let f = |v: i64| {
+            let b = if sh >= 0 { v >> sh } else { v << -sh };
+            Fixed22::from_bits(b as i32)
+        };
+        Some(([f(g[0]), f(g[1]), f(g[2])], f(dot)))
+    }
+    /// `x 2^-60` to I10F22: `x 2^-38` rounded half up, from the shifted bits (`|x| <= 2^62`
+    /// gives at most `2^24`, 4.0; beyond, saturated).
+    #[inline(always)]
+    fn from_q60(x: i64) -> Self {
+        let bits = ((x >> 37) + 1) >> 1;
+        Fixed22::from_bits(bits.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+    }
     /// `normalize3`'s unit vector and length, bit for bit, and the ratios in its rescaled
     /// space: with `v = V 2^-k` (`V` the rescaled vector, `S` its sum of squares and `1/|V|`
     /// the reciprocal square root the normalization computes anyway), `r / |v| = (r 2^k)/|V|`
