@@ -48,8 +48,11 @@ pub enum Error {
     PointOnSegment,
     /// The scalar type cannot resolve the named position finely enough for the model's
     /// documented accuracy. Fixed point only: a shading point within the type's rounding of a
-    /// polygon light's plane and over its face, where the value jumps from 0 (in the plane)
-    /// to nearly the whole face just off it, and the type cannot tell which.
+    /// polygon light's plane and over its face (or near its edges), where the value jumps from
+    /// 0 (in the plane) to nearly the whole face just off it, and the type cannot tell which;
+    /// and a shading point so close to a polygon light's vertex, or to an edge beside it, that
+    /// the directions the model needs are not known to its accuracy (the limits of the polygon
+    /// module's fixed-point section, README "Fixed point").
     Unresolved(&'static str),
     /// A line light's decay exponent k outside {0, 1, 2, 3}.
     DecayOutOfRange,
@@ -106,7 +109,7 @@ impl fmt::Display for Error {
             Error::PointOnSegment => f.write_str("shading point is on the segment"),
             Error::Unresolved(p) => write!(
                 f,
-                "{p} is within the scalar type's rounding of the light's plane, over its face: the value is not resolved (fixed point)"
+                "{p} is too close to the light's plane or boundary for the scalar type's precision: the value is not resolved (fixed point)"
             ),
             Error::DecayOutOfRange => f.write_str("decay k is outside {0, 1, 2, 3}"),
             Error::Overflow => f.write_str("the value overflows the scalar type"),

@@ -428,7 +428,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// # Errors
     /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`,
     /// [`Error::Unresolved`] for a fixed-point `p` within the type's rounding of the plane, over
-    /// the face (see [`PolygonLight::try_lambert`]).
+    /// the face or near its edges, and for a fixed-point `p` within `2^-8` (`m < 128`) or
+    /// `2^-7` of a vertex or of an edge beside it (see [`PolygonLight::try_lambert`]).
     pub fn try_phong(
         &self,
         lobe: &PhongLobe<T>,
@@ -525,7 +526,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// types: an edge whose coordinates or products would leave the normal range (beyond
     /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
     /// scaled by a power of two first, on a cold path that costs nothing when not taken.
-    /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane.
+    /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane or
+    /// where [`PolygonLight::try_phong`] reports [`Error::Unresolved`].
     ///
     /// <!-- BEGIN acc-phong_polygon: target/accuracy/model-phong_polygon.md -->
     /// Measured: f64 within 3.1e-13 of its reference (the independent quadrature, adversarial);

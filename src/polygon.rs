@@ -229,8 +229,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// [`Error::NotFinite`] for `p` or `n`, [`Error::ZeroLength`] for `n`,
     /// [`Error::OutOfRange`] for `p` beyond [`Real::COORDINATE_LIMIT`] (fixed point only),
     /// [`Error::Unresolved`] for a fixed-point `p` within the type's rounding of the plane, over
-    /// the face (where the value jumps from 0 to nearly the whole face and the type cannot
-    /// tell which side `p` is on; in the plane outside the polygon it is 0).
+    /// the face or near its edges (where the value jumps from 0 to nearly the whole face and
+    /// the type cannot tell which side `p` is on; in the plane away from the polygon it is 0),
+    /// and for a fixed-point `p` within `2^-9` of a vertex or of an edge beside it (see
+    /// `near_limit` in this module: the directions are not known to 1/1024 there).
     pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         p.check_position("p")?;
         let n = n.try_unit("n")?.into_inner();
@@ -295,8 +297,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// crossing: a few multiply-adds. Measured on a quad (QEMU, median): 696 Cortex-M4F
     /// instructions in f32 (920 with the arc tangent), 6089 Cortex-M0 instructions in
     /// `Fixed22`. Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the
-    /// polygon's plane (fixed point over the face: 0 too, where [`PolygonLight::try_lambert`]
-    /// reports [`Error::Unresolved`]).
+    /// polygon's plane (fixed point: 0 too where [`PolygonLight::try_lambert`] reports
+    /// [`Error::Unresolved`], over the face or near the boundary).
     ///
     /// <!-- BEGIN acc-polygon_lambert: target/accuracy/model-polygon_lambert.md -->
     /// Measured: f64 within 2.1e-14 of its reference (the independent quadrature, adversarial);

@@ -38,8 +38,27 @@
 //!   sphere 2^-24 of its distance across has a radius of 0 or 1 unit of fixed point's `2^-22`
 //!   after scaling (its value is below `2^-46` then, far inside the bound).
 //!
-//! Cost: the differences and the shift (about 40 Cortex-M0 instructions a point), the
-//! conversion of each coordinate, and the light's model at `p = 0`.
+//! ## Accuracy
+//!
+//! Measured by `tests/world.rs` (4000 random spheres and polygons each, centres and points
+//! within 1000 units of the origin, sizes 1e-3 to 500; the reference is f64's plain model on the
+//! exact differences), largest absolute error:
+//!
+//! | backend | `sphere_lambert` | `sphere_lambert_hermite` | `phong_sphere` (m to 255) | `polygon_lambert` | `phong_polygon` (m to 255) |
+//! |---|---:|---:|---:|---:|---:|
+//! | f64 | 0 (the same bits) | 0 | 0 | 0 | 0 |
+//! | f32 | 4.2e-7 | 4.7e-7 | 1.9e-6 | 2.6e-7 | 1.2e-6 |
+//! | `Fast32` | 6.2e-6 | 9.0e-6 | 2.6e-5 | 5.3e-6 | 2.5e-5 |
+//! | `Fixed22` | 2.5e-6 | 2.5e-6 | 4.0e-5 | 2.0e-6 | 9.5e-6 |
+//! | `Fixed22`, 10^6 units from the origin | 3.2e-6 | 3.0e-6 | 5.6e-5 | 1.8e-6 | 1.2e-5 |
+//!
+//! No case is refused. Near a polygon's boundary fixed point refuses what it cannot resolve
+//! (`tests/fixed_near.rs`; README, "Fixed point").
+//!
+//! ## Cost
+//!
+//! The differences and the shift, one conversion per coordinate, and the light's model at
+//! `p = 0` (measured per call: `WorldSphereLight::lambert` and `WorldPolygonLight::lambert`).
 //!
 //! The float types gain nothing in range from this (they have no limit), but take the same
 //! path, so a scene description in world coordinates runs on any backend.

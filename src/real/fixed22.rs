@@ -13,11 +13,16 @@
 //!   `2 pi`, so 9 integer bits plus sign are needed; 22 fraction bits are what remains.
 //! - Positions: the models form cross and dot products of unnormalized point differences
 //!   (Lambert's edge terms, the clipping), which must stay inside `[-512, 512)`: positions are
-//!   limited to `|x| <= 4` ([`Fixed22::COORDINATE_LIMIT`], checked by every constructor; a
-//!   shading point beyond it gives a finite but meaningless value). Every area-light model
-//!   here is scale invariant (a scene scaled by any factor shades the same), so the limit is
-//!   no restriction: scale the scene into the cube, which leaves `2^-22 / 8 = 3e-8` of its
-//!   size as the position resolution, as fine as f32's at the cube's corners.
+//!   limited to `|x| <= 4` ([`Fixed22::COORDINATE_LIMIT`], checked by every constructor and
+//!   every `try_` function). Every area-light model here is scale invariant (a scene scaled by
+//!   any factor shades the same), so scenes keep their own units through
+//!   [`crate::world`]: positions as 64-bit integers (`2^-32` up to `2^30`), and per sample the
+//!   light's points minus `p`, exact, scaled by one power of two so that the largest lands in
+//!   `[2, 4]`: `2^-22/4` of the light's extent seen from `p` as the resolution.
+//! - Near a polygon light's boundary a direction known to `2^-22` absolute is not enough:
+//!   the polygon models refuse a shading point within `2^-9` to `2^-7` of a vertex or of an
+//!   edge beside it ([`crate::Error::Unresolved`]; the polygon module's `near_limit`), and
+//!   form `ua x d` and `ua.ub` exactly where they cancel.
 //!
 //! Arithmetic **saturates** (never wraps): `+`, `-`, unary `-` are the `fixed` crate's
 //! saturating operations; `*` is this module's own product, exactly `floor(a b / 2^22)` as the
