@@ -24,6 +24,7 @@ use arealight::{
     lune_normalization, try_lune_normalization, CapLight, Decay, DistanceFalloff, Fast32, Fixed22,
     HemisphereLight, LightFrame, LineLight, OvercastSky, ParallelogramLight, PhongLobe,
     PolygonLight, Real, Rgb, Sh9, SkyGround, SphereLight, Superellipse, Uberlight, Vec3,
+    WorldPoint, WorldPolygonLight, WorldSphereLight,
 };
 
 /// The model families, one fuzz target each.
@@ -383,6 +384,23 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
                     fin(c.phong(l, n), "phong_cap");
                 }
             }
+            // The same sphere in world coordinates (any finite radius below 2^30).
+            let world = (
+                WorldPoint::from_vec3(center, "center"),
+                WorldPoint::from_vec3(p, "p"),
+            );
+            if let (Ok(c), Ok(pw)) = world {
+                if let Ok(sp) = WorldSphereLight::<T>::new(c, radius.to_f64()) {
+                    fin(sp.lambert(pw, n), "world sphere_lambert");
+                    fin(sp.lambert_hermite(pw, n), "world sphere_lambert_hermite");
+                    if let Ok(x) = sp.try_lambert(pw, n) {
+                        fin(x, "world try_lambert");
+                    }
+                    if let Some(l) = &lobe {
+                        fin(sp.phong(l, pw, n), "world phong_sphere");
+                    }
+                }
+            }
             if let Ok(sp) = SphereLight::new(center, radius) {
                 fin(sp.lambert(p, n), "sphere_lambert");
                 fin(sp.lambert_hermite(p, n), "sphere_lambert_hermite");
@@ -427,6 +445,22 @@ pub fn run_t<T: Real>(family: Family, data: &[u8]) {
                 });
             }
             if family == Family::Polygon {
+                // The same polygon in world coordinates.
+                let wv: Result<Vec<WorldPoint>, _> = verts
+                    .iter()
+                    .map(|&v| WorldPoint::from_vec3(v, "verts"))
+                    .collect();
+                if let (Ok(wv), Ok(pw)) = (wv, WorldPoint::from_vec3(p, "p")) {
+                    if let Ok(wl) = WorldPolygonLight::<T, 8>::new(&wv) {
+                        fin(wl.lambert(pw, n), "world polygon_lambert");
+                        if let Ok(x) = wl.try_lambert(pw, n) {
+                            fin(x, "world try_lambert");
+                        }
+                        if let Ok(l) = PhongLobe::<T>::new(m) {
+                            fin(wl.phong(&l, pw, n), "world phong_polygon");
+                        }
+                    }
+                }
                 fin(pl.lambert(p, n), "polygon_lambert");
                 fin(pl.clipped_solid_angle(p, n), "clipped_solid_angle");
                 if let Ok(x) = pl.try_lambert(p, n) {
