@@ -29,16 +29,8 @@ fn near_case(rng: &mut Rng) -> (Vec<V3>, V3, V3, u32, f64) {
         rng.range(-1000.0, 1000.0),
     ];
     let size = 10f64.powf(rng.range(-0.5, 2.7));
-    let (e1, e2) = frame(rng.dir());
-    let k = 3 + rng.below(6) as usize;
-    let b = size * rng.range(0.3, 1.0);
-    let phase = rng.range(0.0, 1.0);
-    let verts: Vec<V3> = (0..k)
-        .map(|i| {
-            let t = std::f64::consts::TAU * (i as f64 + phase + rng.range(-0.3, 0.3)) / k as f64;
-            add(c, add(scale(e1, size * t.cos()), scale(e2, b * t.sin())))
-        })
-        .collect();
+    let verts = ellipse_polygon(rng, c, size);
+    let k = verts.len();
     let i = rng.below(k as u64) as usize;
     let rel = 10f64.powf(rng.range(-8.0, -0.5));
     let d = size * rel;

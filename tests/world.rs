@@ -85,17 +85,9 @@ struct PolyCase {
 fn polygon_case(rng: &mut Rng, origin: V3) -> PolyCase {
     let c = in_cube(rng, origin, 1000.0);
     let size = log_uniform(rng, -2.0, 2.7);
-    let axis = rng.dir();
-    let (e1, e2) = frame(axis);
-    let k = 3 + rng.below(6) as usize;
-    let (a, b) = (size, size * rng.range(0.3, 1.0));
-    let phase = rng.range(0.0, 1.0);
-    let verts: Vec<V3> = (0..k)
-        .map(|i| {
-            let t = std::f64::consts::TAU * (i as f64 + phase + rng.range(-0.3, 0.3)) / k as f64;
-            add(c, add(scale(e1, a * t.cos()), scale(e2, b * t.sin())))
-        })
-        .collect();
+    let verts = ellipse_polygon(rng, c, size);
+    // The plane's normal (any two edges: the polygon is convex, counter-clockwise or not).
+    let axis = normalize(cross(sub(verts[1], verts[0]), sub(verts[2], verts[0])));
     let p = loop {
         let p = if rng.below(2) == 0 {
             in_cube(rng, origin, 1000.0)

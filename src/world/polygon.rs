@@ -79,7 +79,9 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
     ///
     /// # Errors
     /// [`Error::NotFinite`] or [`Error::ZeroLength`] for `n`, [`Error::Unresolved`] for a
-    /// fixed-point `p` within the type's rounding of the plane (after scaling), over the face.
+    /// fixed-point `p` the kernel cannot resolve after scaling: within its rounding of the
+    /// plane over the face or near the edges, or within `2^-9` of a vertex or of an edge
+    /// beside it (README, "Fixed point").
     pub fn try_lambert(&self, p: WorldPoint, n: impl Direction<T>) -> Result<T, Error> {
         self.local(p).try_lambert(origin(), n)
     }

@@ -1258,3 +1258,18 @@ pub fn fit_scale(pts: &[V3]) -> f64 {
     }
     s
 }
+
+/// A random convex polygon of 3 to 8 vertices on an ellipse in a random plane through `c`:
+/// semi-axes `size` and `size` times 0.3 to 1, the vertices at jittered equal angles.
+pub fn ellipse_polygon(rng: &mut Rng, c: V3, size: f64) -> Vec<V3> {
+    let (e1, e2) = frame(rng.dir());
+    let k = 3 + rng.below(6) as usize;
+    let b = size * rng.range(0.3, 1.0);
+    let phase = rng.range(0.0, 1.0);
+    (0..k)
+        .map(|i| {
+            let t = TAU * (i as f64 + phase + rng.range(-0.3, 0.3)) / k as f64;
+            add(c, add(scale(e1, size * t.cos()), scale(e2, b * t.sin())))
+        })
+        .collect()
+}
