@@ -371,16 +371,19 @@ fn phong_edge_terms<T: Real>(
     Some((w, rg * (sum + last)))
 }
 
-/// `(G, ua.ub)` of an edge for [`phong_edge_terms`] from its own products `g` and `dot`, except where fixed point
-/// would lose `G` to rounding: a `G` whose largest component is below `2^-4` ([`EXACT_G_BELOW_LOG2`]) (a
-/// point near the edge's line, or a short edge) is formed exactly and scaled
-/// ([`Real`]'s sealed `cross_dot_scaled`; the terms are scale-free). Measured on points near
-/// the boundary of random polygons (`tests/fixed_near.rs`): at `m = 128..255`, 1.8e-3 with the
+/// `(G, ua.ub)` of an edge for [`phong_edge_terms`] whose `G` (largest component `gm`) is below
+/// `2^-4`, from its own products `g` and `dot`, except where fixed point would lose `G`'s
+/// direction to rounding: with `p` near the edge's line, `|G|` below `2^-4 |d|`
+/// ([`EXACT_NEAR_LINE_LOG2`]), `G` and `ua.ub` are formed exactly and scaled
+/// ([`Real`]'s sealed `cross_dot_scaled`; the terms are scale-free); a short edge elsewhere
+/// (products below 1/64) is scaled up by shifts first. Measured on points near the boundary of
+/// random polygons (`tests/fixed_near.rs`): at `m = 128..255`, 1.8e-3 with the
 /// rounded `G` against 4.3e-4 exact, `p` 2^-8 from the boundary.
 #[cfg(feature = "polygon")]
-#[inline(always)]
-fn exact_if_small<T: Real>(e: &ClippedEdge<T>, g: Vec3<T>, dot: T) -> (Vec3<T>, T) {
-    if T::RESOLUTION > T::ZERO && g.max_abs() < T::from_fixed_i32(1, EXACT_G_BELOW_LOG2) {
+#[cold]
+#[inline(never)]
+fn small_g_products<T: Real>(e: &ClippedEdge<T>, g: Vec3<T>, dot: T, gm: T) -> (Vec3<T>, T) {
+    if gm < T::from_fixed_i32(1, EXACT_NEAR_LINE_LOG2) * e.d.max_abs() {
         if let Some(([x, y, z], dot)) = T::cross_dot_scaled(
             [e.ua.x, e.ua.y, e.ua.z],
             [e.ub.x, e.ub.y, e.ub.z],
@@ -388,14 +391,20 @@ fn exact_if_small<T: Real>(e: &ClippedEdge<T>, g: Vec3<T>, dot: T) -> (Vec3<T>, 
         ) {
             return (Vec3::new(x, y, z), dot);
         }
+    } else if !products_in_range(gm, dot.abs()) {
+        // A short edge, not near its line: the products of the edge scaled up (shifts) keep
+        // their precision (and stay in range for `phong_edge_terms`).
+        if let Some(s) = e.rescaled() {
+            return (s.ua.cross(s.d), s.ua.dot(s.ub));
+        }
     }
     (g, dot)
 }
 
-/// [`exact_if_small`]'s threshold, `2^-4`: a `G` that small keeps under 18 bits of its own in
-/// fixed point's absolute rounding.
+/// [`small_g_products`]' thresholds, `2^-4`: a `G` that small, and `p` within about `|d|/16`
+/// of the edge's line.
 #[cfg(feature = "polygon")]
-const EXACT_G_BELOW_LOG2: u32 = 4;
+const EXACT_NEAR_LINE_LOG2: u32 = 4;
 
 /// [`phong_edge_terms`] from the edge scaled by a power of two (exact; the terms are
 /// scale-free): the cold path for an edge whose coordinates or products leave the normal range
@@ -479,10 +488,19 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             let terms = match (start, end) {
                 (Some(a), Some((_, rb))) => {
                     let (g, dot) = (e.ua.cross(e.d), e.ua.dot(e.ub));
-                    if T::RESOLUTION > T::ZERO {
-                        beside |= e.beside(g, dot, r_min);
-                    }
-                    let (g, dot) = exact_if_small(&e, g, dot);
+                    let (g, dot) = if T::RESOLUTION > T::ZERO {
+                        // Fixed point: beside the edge, the limit's test; and where `G` is
+                        // small, its products again, exact or scaled (cold).
+                        let gm = g.max_abs();
+                        beside |= dot < T::ZERO && gm < r_min * e.d.max_abs();
+                        if gm < T::from_fixed_i32(1, EXACT_NEAR_LINE_LOG2) {
+                            small_g_products(&e, g, dot, gm)
+                        } else {
+                            (g, dot)
+                        }
+                    } else {
+                        (g, dot)
+                    };
                     phong_edge_terms(g, dot, a, rb, ru, m)
                 }
                 _ => None,

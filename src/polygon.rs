@@ -437,17 +437,6 @@ impl<T: Real> ClippedEdge<T> {
         edge_atan_term_fixed(self.ua, self.ub, self.d, n, r_min)
     }
 
-    /// Fixed point: the test of [`ClippedEdge::lambert_term_resolved`] from the edge's `G` and
-    /// `ua.ub` (as its caller computed them, unscaled).
-    #[cfg(feature = "phong")]
-    #[inline(always)]
-    pub(crate) fn beside(&self, g: Vec3<T>, dot: T, r_min: T) -> bool {
-        T::RESOLUTION > T::ZERO
-            && !self.horizon
-            && dot < T::ZERO
-            && g.max_abs() < r_min * self.d.max_abs()
-    }
-
     /// The same edge scaled by a power of two that brings its largest coordinate into [1, 2)
     /// ([`scaled_to_unit`]); `None` for an edge with no finite non-zero coordinate. Every term of an edge is scale-free, so this is the cold path of the edge
     /// terms whose products would leave the normal range.
