@@ -88,6 +88,7 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
 
     /// `[polygon_lambert]` at `p`: [`PolygonLight::lambert`] of [`WorldPolygonLight::local`].
     /// Fallback: 0 for a zero or non-finite `n` and for `p` in the polygon's plane.
+    /// Accuracy and cost: [the module docs](super) (measured by `tests/world.rs`).
     #[inline]
     pub fn lambert(&self, p: WorldPoint, n: impl Direction<T>) -> T {
         self.local(p).lambert(origin(), n)
@@ -110,6 +111,7 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
 
     /// `[phong_polygon]` at `p`: [`PolygonLight::phong`] of [`WorldPolygonLight::local`].
     /// Fallback: as [`WorldPolygonLight::lambert`].
+    /// Accuracy and cost: [the module docs](super) (measured by `tests/world.rs`).
     #[cfg(feature = "phong")]
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: WorldPoint, r: impl Direction<T>) -> T {

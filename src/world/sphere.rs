@@ -74,6 +74,7 @@ impl<T: Real> WorldSphereLight<T> {
 
     /// `[sphere_lambert]` at `p`: [`SphereLight::lambert`] of [`WorldSphereLight::local`].
     /// Fallback: 0 for a point inside or on the sphere, or a zero or non-finite `n`.
+    /// Accuracy and cost: [the module docs](super) (measured by `tests/world.rs`).
     #[inline]
     pub fn lambert(&self, p: WorldPoint, n: impl Direction<T>) -> T {
         self.local(p).lambert(origin(), n)
@@ -110,6 +111,7 @@ impl<T: Real> WorldSphereLight<T> {
 
     /// `[phong_sphere]` at `p`: [`SphereLight::phong`] of [`WorldSphereLight::local`].
     /// Fallback: as [`WorldSphereLight::lambert`].
+    /// Accuracy and cost: [the module docs](super) (measured by `tests/world.rs`).
     #[cfg(feature = "phong")]
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: WorldPoint, r: impl Direction<T>) -> T {
