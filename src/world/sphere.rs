@@ -90,6 +90,7 @@ impl<T: Real> WorldSphereLight<T> {
 
     /// `[sphere_lambert_hermite]` at `p`: [`SphereLight::lambert_hermite`] of
     /// [`WorldSphereLight::local`]. Fallback: as [`WorldSphereLight::lambert`].
+    /// Accuracy and cost: [the module docs](super) (measured by `tests/world.rs`).
     #[inline]
     pub fn lambert_hermite(&self, p: WorldPoint, n: impl Direction<T>) -> T {
         self.local(p).lambert_hermite(origin(), n)
