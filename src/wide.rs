@@ -57,6 +57,78 @@ pub(crate) fn mul_shr_by_halves(a: i32, b: i32, s: u32) -> i32 {
     h.wrapping_shl(32 - s).wrapping_add((w >> (s - 16)) as i32)
 }
 
+/// A factor in `[0, 1)` as an unsigned Q32 fraction (`m 2^-32`), with its 16-bit halves kept
+/// ready: the constant factor of a loop of [`mul_q32`] products is split once.
+#[cfg(all(
+    feature = "fixed",
+    feature = "polygon",
+    any(feature = "phong", feature = "moments")
+))]
+#[derive(Clone, Copy)]
+pub(crate) struct Q32 {
+    m: u32,
+    hi: u32,
+    lo: u32,
+}
+
+#[cfg(all(
+    feature = "fixed",
+    feature = "polygon",
+    any(feature = "phong", feature = "moments")
+))]
+impl Q32 {
+    /// The fraction `m 2^-32`.
+    #[inline(always)]
+    pub(crate) fn new(m: u32) -> Self {
+        Q32 {
+            m,
+            hi: m >> 16,
+            lo: m & 0xFFFF,
+        }
+    }
+}
+
+/// `floor(x m / 2^32)` for a signed `x` and the fraction `m` (exactly: the high word of the
+/// signed-by-unsigned product). On ARMv6-M from four 16 x 16-bit products with `m`'s halves
+/// ready: with `x = xh 2^16 + xl` and `m = mh 2^16 + ml`, `x m = xh mh 2^32 + (a + b) 2^16 +
+/// xl ml` (`a = xh ml` signed, `b = xl mh` unsigned, each split at bit 16), so the result is
+/// `xh mh + (a >> 16) + (b >> 16) + floor(w / 2^16)` with `w = (a & 0xFFFF) + (b & 0xFFFF) +
+/// floor(xl ml / 2^16) < 3 2^16`: about 16 instructions against about 22 for [`mul_shr`]
+/// (whose second factor is split each time and whose result is reassembled by shifts). The
+/// plain 64-bit product elsewhere; the same bits on both.
+#[cfg(all(
+    feature = "fixed",
+    feature = "polygon",
+    any(feature = "phong", feature = "moments")
+))]
+#[inline(always)]
+pub(crate) fn mul_q32(x: i32, m: Q32) -> i32 {
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        mul_q32_by_halves(x, m)
+    } else {
+        ((i64::from(x) * i64::from(m.m)) >> 32) as i32
+    }
+}
+
+/// [`mul_q32`] from four 16 x 16-bit products.
+#[cfg(all(
+    feature = "fixed",
+    feature = "polygon",
+    any(feature = "phong", feature = "moments")
+))]
+#[inline(always)]
+pub(crate) fn mul_q32_by_halves(x: i32, m: Q32) -> i32 {
+    let (xh, xl) = (x >> 16, (x & 0xFFFF) as u32);
+    // |xh| <= 2^15, xl, mh, ml < 2^16: xh mh and a fit an i32, b and xl ml a u32.
+    let hh = xh.wrapping_mul(m.hi as i32);
+    let a = xh.wrapping_mul(m.lo as i32);
+    let b = xl.wrapping_mul(m.hi);
+    let w = (a & 0xFFFF) as u32 + (b & 0xFFFF) + (xl.wrapping_mul(m.lo) >> 16);
+    hh.wrapping_add(a >> 16)
+        .wrapping_add((b >> 16) as i32)
+        .wrapping_add((w >> 16) as i32)
+}
+
 /// `a * b` exactly from four 16 x 16-bit products (each fits the 32-bit `MULS`).
 #[inline(always)]
 pub(crate) fn mul_32_by_halves(a: i32, b: i32) -> i64 {
@@ -248,6 +320,32 @@ mod tests {
                 assert_eq!(mul_shr_by_halves(a, b, s), exact as i32, "{a} * {b} >> {s}");
                 assert_eq!(mul_shr(a, b, s), exact as i32, "{a} * {b} >> {s}");
             }
+        }
+    }
+
+    #[cfg(all(
+        feature = "fixed",
+        feature = "polygon",
+        any(feature = "phong", feature = "moments")
+    ))]
+    #[test]
+    fn q32_products_by_halves_equal_the_64_bit_ones() {
+        let mut next = xorshift(0x7F4A_7C15);
+        let mut pairs: std::vec::Vec<(i32, u32)> = std::vec::Vec::new();
+        for &x in &EDGE {
+            for &m in &EDGE {
+                pairs.push((x, m as u32));
+            }
+            pairs.push((x, u32::MAX));
+        }
+        for _ in 0..1_000_000 {
+            let (x, m) = (next(), next() as u32);
+            pairs.push((x >> (next() as u32 % 32), m >> (next() as u32 % 32)));
+        }
+        for (x, m) in pairs {
+            let exact = ((i64::from(x) * i64::from(m)) >> 32) as i32;
+            assert_eq!(mul_q32_by_halves(x, Q32::new(m)), exact, "{x} * {m} >> 32");
+            assert_eq!(mul_q32(x, Q32::new(m)), exact, "{x} * {m} >> 32");
         }
     }
 

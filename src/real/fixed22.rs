@@ -231,9 +231,9 @@ impl MulAssign for Fixed22 {
 }
 
 mod kernels;
-#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
-pub(crate) use kernels::recip_q31;
 use kernels::*;
+#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+pub(crate) use kernels::{recip_q32, recip_q32_odd};
 
 impl Real for Fixed22 {
     const ZERO: Self = Fixed22::from_bits(0);

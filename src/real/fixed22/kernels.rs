@@ -196,38 +196,39 @@ pub(super) const RECIP_ODD: [u32; 127] = {
     t
 };
 
-/// `2^31 / k` in Q31 for an integer `k` in [2, 256], rounded down to within one unit (from
-/// [`RECIP_ODD`] shifted by `k`'s power of two: `k = o 2^e`, `floor(ceil(2^32/o) / 2^(e+1))`,
-/// below the exact `2^31/k` by less than one unit plus `2^-e` of a unit, above it never by a
-/// unit); `2^31 / k` by division for other `k >= 1` (`i32::MAX` for `k = 0`, `k = 1`). The
-/// `1/k` steps of the fixed-point cosine-power recurrence (`polygon::arc`): a table lookup
-/// and a shift, no division.
+/// [`recip_q32`] of the odd `k = 2 j + 3` while `k < 256` (`None` beyond): the table entry
+/// itself, for a loop over odd `k` that counts `j` (no parity or range tests of `k`).
 #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
 #[inline(always)]
-pub(crate) fn recip_q31(k: u32) -> i32 {
+pub(crate) fn recip_q32_odd(j: usize) -> Option<u32> {
+    RECIP_ODD.get(j).copied()
+}
+
+/// `1/k` as a Q32 fraction for an integer `k >= 2`: `ceil(2^32/o) / 2^e` from [`RECIP_ODD`]
+/// for `k = o 2^e` up to 256 (above the exact `2^32/k` by less than one unit, never below by a
+/// unit), `2^(32 - e)` for a power of two, `floor((2^32 - 1)/k)` by division above 256
+/// (`u32::MAX` for `k < 2`). The `1/k` steps of the fixed-point cosine-power recurrence
+/// (`polygon::arc`): a table lookup, no division.
+#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+#[inline(always)]
+pub(crate) fn recip_q32(k: u32) -> u32 {
     if k & 1 == 1 && k >= 3 {
         // Odd k (the recurrence's every step for an even Phong exponent): one lookup.
         if let Some(&r) = RECIP_ODD.get((k as usize - 3) / 2) {
-            return (r >> 1) as i32;
+            return r;
         }
     }
     if !(2..=256).contains(&k) {
-        return if k <= 1 {
-            i32::MAX
-        } else {
-            ((1u32 << 31) / k) as i32
-        };
+        return if k < 2 { u32::MAX } else { u32::MAX / k };
     }
     let e = k.trailing_zeros();
     let o = k >> e;
-    let r = if o == 1 {
-        1u32 << 31 >> e
+    if o == 1 {
+        // k = 2^e, 1 <= e <= 8.
+        1u32 << (32 - e)
     } else {
-        RECIP_ODD
-            .get((o as usize - 3) / 2)
-            .map_or(0, |&r| r >> (e + 1))
-    };
-    r as i32
+        RECIP_ODD.get((o as usize - 3) / 2).map_or(0, |&r| r >> e)
+    }
 }
 
 /// `a / n` in Q22 for an integer `n` in [1, 256]: bit-identical to `div_bits(a, n 2^22)` (the
