@@ -94,7 +94,7 @@ pub mod target;
 
 pub use edge::{Cull, EdgeTriangle, FixedPoint};
 pub use mesh::MeshCounts;
-pub use prepared::{PreparedMesh, PreparedVertex, TriangleRows, VertexColour};
+pub use prepared::{PreparedMesh, PreparedVertex, TriangleRows, VertexColour, VertexScreen};
 pub use shade::{reflect, Lit, Material, Shader, Shading};
 pub use target::{
     encode_pixel, Band, EncodeTable, Encoding, PixelFormat, Rgb565, Rgb888, ToneMap, DEPTH_FAR,

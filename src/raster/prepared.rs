@@ -63,8 +63,13 @@ use super::{
 };
 use crate::{Real, Rgb, Vec3};
 
-/// Vertex flags.
+mod share;
+pub use share::{VertexColour, VertexScreen};
+
+/// Vertex flags: shaded this frame (Gouraud) ...
 const NEEDED: u8 = 1;
+/// ... and transformed to a finite position beyond [`Real::COORDINATE_LIMIT`] (fixed point).
+const BEYOND: u8 = 2;
 
 /// One vertex of a [`PreparedMesh`] for the current frame (see the module docs). Storage only:
 /// its fields are the rasterizer's.
@@ -154,17 +159,6 @@ impl Default for TriangleRows {
     fn default() -> Self {
         Self::EMPTY
     }
-}
-
-/// A shaded vertex colour as [`PreparedMesh`] keeps it (linear, times the exposure, in fixed
-/// point): opaque, to be handed from one core's prepared mesh to another's
-/// ([`PreparedMesh::colours`], [`PreparedMesh::set_colours`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct VertexColour([i32; 3]);
-
-impl VertexColour {
-    /// Black (to fill exchange buffers).
-    pub const BLACK: Self = VertexColour([0; 3]);
 }
 
 /// A [`Mesh`] with its vertices transformed, projected and (Gouraud) shaded for the current
@@ -303,17 +297,23 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     /// (~15 operations in `T`); fixed point adds a range test (3 absolute values, 3
     /// comparisons).
     pub fn transform(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
-        self.transform_with(camera, transform, true);
+        self.transform_with(camera, transform, true, |_| true);
     }
 
     /// [`PreparedMesh::transform`] without the normals (left zero): for a mesh whose shader
     /// does not read them (an emissive object), it saves a normal transform and a
     /// normalization per vertex.
     pub fn transform_unlit(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
-        self.transform_with(camera, transform, false);
+        self.transform_with(camera, transform, false, |_| true);
     }
 
-    fn transform_with(&mut self, camera: &Camera<T>, transform: &Affine<T>, normals: bool) {
+    fn transform_with(
+        &mut self,
+        camera: &Camera<T>,
+        transform: &Affine<T>,
+        normals: bool,
+        mine: impl Fn(usize) -> bool,
+    ) {
         let (near, far) = (camera.near, camera.far);
         // q = a - b / z in perspective, (z - near) / (far - near) orthographic.
         let range = far - near;
@@ -323,7 +323,10 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         let (mut top, mut bottom) = (i32::MAX, i32::MIN);
         let mut clipped = false;
         self.out_of_range = false;
-        for (v, src) in self.verts.iter_mut().zip(self.mesh.vertices()) {
+        for (i, (v, src)) in self.verts.iter_mut().zip(self.mesh.vertices()).enumerate() {
+            if !mine(i) {
+                continue;
+            }
             let p = transform.point(src.position);
             // Folds away for the float types (no limit).
             let beyond = T::COORDINATE_LIMIT < f64::MAX && p.check_position("vertex").is_err();
@@ -331,6 +334,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             if !p.is_finite() || beyond {
                 *v = PreparedVertex {
                     outside: u8::MAX,
+                    flags: if beyond && p.is_finite() { BEYOND } else { 0 },
                     ..PreparedVertex::EMPTY
                 };
                 clipped = true;
@@ -372,17 +376,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             bottom = bottom.max(fp.y);
         }
         self.rows_cull = None;
-        self.rows = if clipped {
-            (0, camera.height as i32)
-        } else if top > bottom {
-            (0, 0)
-        } else {
-            // Pixel row r has its centre at 16 r + 8: rows whose centre lies in [top, bottom].
-            (
-                (top - SUBPIXEL / 2).div_euclid(SUBPIXEL),
-                (bottom - SUBPIXEL / 2).div_euclid(SUBPIXEL) + 2,
-            )
-        };
+        self.rows = screen_rows(camera, clipped, top, bottom);
     }
 
     /// Gouraud: shades, once each, the vertices of the triangles that will be drawn
@@ -487,27 +481,6 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             calls = calls.wrapping_add(1);
         }
         calls
-    }
-
-    /// The shaded colours of the vertices, in vertex order (meaningful for the vertices
-    /// shaded this frame): what a core hands the other after [`PreparedMesh::shade_some`].
-    pub fn colours(&self) -> impl Iterator<Item = VertexColour> + '_ {
-        self.verts.iter().map(|v| VertexColour(v.colour))
-    }
-
-    /// Takes the colours of the vertices whose index `theirs` accepts from `colours` (in
-    /// vertex order, as [`PreparedMesh::colours`] gives them; missing entries are left as
-    /// they are).
-    pub fn set_colours(
-        &mut self,
-        colours: impl IntoIterator<Item = VertexColour>,
-        theirs: impl Fn(usize) -> bool,
-    ) {
-        for (i, (v, c)) in self.verts.iter_mut().zip(colours).enumerate() {
-            if theirs(i) {
-                v.colour = c.0;
-            }
-        }
     }
 
     /// Draws the mesh into `band` with this frame's vertices: Gouraud with the colours of
@@ -720,6 +693,22 @@ impl<T: Real> ScreenVertex<T> {
             n: v.n,
             iw: v.iw,
         }
+    }
+}
+
+/// The screen rows `[top, bottom)` a mesh can cover: all rows if a vertex is clipped (`clipped`),
+/// else the rows whose pixel centre (`16 r + 8` sub-pixels) lies in `[top, bottom]`, the
+/// vertices' extent in sub-pixels (none if `top > bottom`).
+fn screen_rows<T>(camera: &Camera<T>, clipped: bool, top: i32, bottom: i32) -> (i32, i32) {
+    if clipped {
+        (0, camera.height as i32)
+    } else if top > bottom {
+        (0, 0)
+    } else {
+        (
+            (top - SUBPIXEL / 2).div_euclid(SUBPIXEL),
+            (bottom - SUBPIXEL / 2).div_euclid(SUBPIXEL) + 2,
+        )
     }
 }
 

@@ -47,7 +47,7 @@ pub mod spec;
 use arealight::raster::{
     mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
     Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, TriangleRows,
-    Vertex, VertexColour,
+    Vertex, VertexColour, VertexScreen,
 };
 use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3};
 
@@ -391,6 +391,51 @@ impl<'a, T: Real> Demo<'a, T> {
         self.lamp.transform_unlit(&self.camera, l);
     }
 
+    /// [`Demo::transform`] of this core's share of the vertices: those whose index is `core`
+    /// modulo `cores` (the same share as [`Demo::shade_share`]'s, so that each core shades the
+    /// vertices it transformed). With two cores, each transforms its half, then each takes the
+    /// other's screen data through a [`ScreenExchange`] ([`Demo::export_screen`],
+    /// [`Demo::import_screen`]): every vertex is transformed once per frame.
+    pub fn transform_share(&mut self, frame: &Frame<T>, core: usize, cores: usize) {
+        let [s, t, l] = &frame.transforms;
+        let cores = cores.max(1);
+        let mine = |i: usize| i % cores == core;
+        self.sphere.transform_some(&self.camera, s, true, mine);
+        self.torus.transform_some(&self.camera, t, true, mine);
+        self.lamp.transform_some(&self.camera, l, false, mine);
+    }
+
+    /// Writes the screen data of this core's share of the vertices into `exchange` (after
+    /// [`Demo::transform_share`] with the same `core` and `cores`; the other entries are left
+    /// for the other core to write).
+    pub fn export_screen(&self, exchange: &mut ScreenExchange<T>, core: usize, cores: usize) {
+        let cores = cores.max(1);
+        let copy = |dst: &mut [VertexScreen<T>], src: &PreparedMesh<'_, '_, T>| {
+            for (i, (d, v)) in dst.iter_mut().zip(src.screen()).enumerate() {
+                if i % cores == core {
+                    *d = v;
+                }
+            }
+        };
+        copy(&mut exchange.sphere, &self.sphere);
+        copy(&mut exchange.torus, &self.torus);
+        copy(&mut exchange.lamp, &self.lamp);
+    }
+
+    /// Takes from `exchange` the screen data of the vertices that core `core` of `cores`
+    /// transformed (what it exported this frame).
+    pub fn import_screen(&mut self, exchange: &ScreenExchange<T>, core: usize, cores: usize) {
+        let cores = cores.max(1);
+        let theirs = |i: usize| i % cores == core;
+        let camera = &self.camera;
+        self.sphere
+            .set_screen(camera, exchange.sphere.iter().copied(), theirs);
+        self.torus
+            .set_screen(camera, exchange.torus.iter().copied(), theirs);
+        self.lamp
+            .set_screen(camera, exchange.lamp.iter().copied(), theirs);
+    }
+
     /// Gouraud: shades the visible vertices of the three objects once each
     /// ([`Stage::Shade`]); per pixel: only the lamp's (its constant colour). Returns the
     /// number of shader calls.
@@ -476,6 +521,33 @@ impl<'a, T: Real> Demo<'a, T> {
             .lamp
             .draw(camera, band, &glow, &self.emissive, self.table)?);
         Ok(())
+    }
+}
+
+/// The vertices' screen data of one frame, as two cores share them (see
+/// [`Demo::transform_share`]): each core writes its share, and reads the other's. 18 KiB in
+/// `Fixed22`.
+#[derive(Clone, Debug)]
+pub struct ScreenExchange<T> {
+    sphere: [VertexScreen<T>; SPHERE_VERTICES],
+    torus: [VertexScreen<T>; TORUS_VERTICES],
+    lamp: [VertexScreen<T>; LAMP_VERTICES],
+}
+
+impl<T: Real> ScreenExchange<T> {
+    /// All placeholders (a `const fn`, for a `static`; all zero bits).
+    pub const fn new() -> Self {
+        ScreenExchange {
+            sphere: [VertexScreen::EMPTY; SPHERE_VERTICES],
+            torus: [VertexScreen::EMPTY; TORUS_VERTICES],
+            lamp: [VertexScreen::EMPTY; LAMP_VERTICES],
+        }
+    }
+}
+
+impl<T: Real> Default for ScreenExchange<T> {
+    fn default() -> Self {
+        Self::new()
     }
 }
 

@@ -1,7 +1,8 @@
 //! The scene of `lit_scene.rs`, drawn by both of the RP2040's cores. Each core transforms
-//! every vertex, but shades only half of the visible vertices (`Demo::shade_share`: even or
-//! odd indices), and the two swap their colours, so the light models are split between the
-//! cores. Then the cores share the bands: each takes the next band from a common list, draws
+//! half of the vertices (`Demo::transform_share`: even or odd indices) and the two swap
+//! their screen data, then each shades its half of the visible vertices (`Demo::shade_share`,
+//! the same halves) and the two swap their colours, so the transform and the light models
+//! are split between the cores. Then the cores share the bands: each takes the next band from a common list, draws
 //! it and sends it to the display itself. The frames are the same pixels as `lit_scene.rs`'s.
 //! Run it with `cargo run --release --bin lit_scene_dual_core`.
 //!
@@ -15,7 +16,8 @@
 //!   identical frames; a vertex both cores shade gets the same colour on both).
 //! - [`HANDOFF`], behind a `critical_section::Mutex` (rp2040-hal's critical section is a
 //!   hardware spinlock, so it excludes the other core too), carries the frame number from core
-//!   0 to core 1, each core's share of the vertex colours to the other, and the list of the
+//!   0 to core 1, each core's share of the vertices' screen data and colours to the other,
+//!   and the list of the
 //!   frame's bands; [`SENDER`], behind another, the display's sender (the DMA channel, SPI and
 //!   pins). A core that has drawn a band takes the sender, sends the band (each band is its
 //!   own address window, so the order is free; the sender waits for the previous band's
@@ -53,8 +55,8 @@ use arealight::Fixed22;
 use cortex_m::singleton;
 use critical_section::Mutex;
 use demo_scene::{
-    ColourExchange, Demo, Frame, MeshBuffers, BACKGROUND, BAND_PIXELS, BAND_ROWS, HEIGHT, PERIOD,
-    WIDTH,
+    ColourExchange, Demo, Frame, MeshBuffers, ScreenExchange, BACKGROUND, BAND_PIXELS, BAND_ROWS,
+    HEIGHT, PERIOD, WIDTH,
 };
 use embedded_hal::digital::OutputPin;
 use embedded_hal_bus::spi::ExclusiveDevice;
@@ -129,6 +131,11 @@ struct Handoff {
     /// What drawing core 1's bands of this frame did (added by core 1 as it sends each band,
     /// read by core 0 once every band is sent).
     stats: DrawStats,
+    /// `screened[k]`: core k's share of this frame's vertex screen data is in `screen` (set
+    /// by core k, cleared by the other core once it has taken it); each core writes only its
+    /// own share's entries.
+    screened: [bool; 2],
+    screen: ScreenExchange<Fixed22>,
     /// `shaded[k]`: core k's share of this frame's vertex colours is in `colours[k]` (set by
     /// core k, cleared by the other core once it has taken them).
     shaded: [bool; 2],
@@ -153,9 +160,39 @@ static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
         shaded: 0,
         pixels: 0,
     },
+    screened: [false; 2],
+    screen: ScreenExchange::new(),
     shaded: [false; 2],
     colours: [ColourExchange::new(), ColourExchange::new()],
 }));
+
+/// The cores' split of the vertex transform: core `core` transforms the vertices of index
+/// `core` modulo 2, hands their screen data to the other core and takes the other core's, so
+/// that both then hold every vertex's screen data, each vertex transformed once per frame.
+/// (Each core keeps the world positions and normals of its own vertices only: the shading
+/// split below is the same.)
+fn share_transform(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: usize) {
+    demo.transform_share(frame, core, 2);
+    wait_for(|h| {
+        if h.screened[core] {
+            return None;
+        }
+        demo.export_screen(&mut h.screen, core, 2);
+        h.screened[core] = true;
+        Some(())
+    });
+    cortex_m::asm::sev();
+    let other = 1 - core;
+    wait_for(|h| {
+        if !h.screened[other] {
+            return None;
+        }
+        demo.import_screen(&h.screen, other, 2);
+        h.screened[other] = false;
+        Some(())
+    });
+    cortex_m::asm::sev();
+}
 
 /// The cores' split of the vertex shading: core `core` shades the visible vertices of index
 /// `core` modulo 2, hands its colours to the other core and takes the other core's, so that
@@ -270,7 +307,7 @@ fn core1(buffers: &'static mut MeshBuffers<Fixed22>) {
     loop {
         let n = wait_for(|h| h.frame.take());
         let frame = demo.frame(n).unwrap();
-        demo.transform(&frame);
+        share_transform(&mut demo, &frame, 1);
         let shaded = share_shading(&mut demo, &frame, 1);
         critical_section::with(|cs| HANDOFF.borrow_ref_mut(cs).stats.shaded += shaded);
         while let Some(k) = next_band(1) {
@@ -396,7 +433,7 @@ fn run() -> ! {
         cortex_m::asm::sev();
         let frame = demo.frame(n).unwrap();
         let t_setup = timer.get_counter_low();
-        demo.transform(&frame);
+        share_transform(&mut demo, &frame, 0);
         let t_transform = timer.get_counter_low();
         let mut stats = DrawStats {
             shaded: share_shading(&mut demo, &frame, 0),
