@@ -247,24 +247,17 @@ fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>,
         p.shade(&s.camera, &Lit::new(&lights, &m.3), &m.4);
         prepared.push(p);
     }
-    let n = w as usize * rows as usize;
-    let (mut px, mut dp) = (vec![Rgb565(0); n], vec![0u16; n]);
-    let mut band = Band::new(&mut px, Some(&mut dp), w, 0).unwrap();
-    let (mut out, mut out_depth) = (Vec::new(), Vec::new());
-    let mut y0 = 0;
-    while y0 < h {
-        band.move_to(y0);
-        band.clear(Rgb565(0));
+    in_bands(w, h, rows, |_, band| {
         for (i, m) in s.meshes.iter().enumerate() {
             let lit = Lit::new(&lights, &m.3);
             if use_prepared {
                 prepared[i]
-                    .draw(&s.camera, &mut band, &lit, &m.4, &table)
+                    .draw(&s.camera, band, &lit, &m.4, &table)
                     .unwrap();
             } else {
                 draw(
                     &s.camera,
-                    &mut band,
+                    band,
                     &Mesh::new(&m.0, &m.1).unwrap(),
                     &m.2,
                     &lit,
@@ -273,6 +266,26 @@ fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>,
                 .unwrap();
             }
         }
+    })
+}
+
+/// A `w` x `h` frame drawn in bands of `rows` rows (`draw(k, band)` draws band `k` into the
+/// cleared band): its pixels and depth values, row after row.
+fn in_bands(
+    w: u16,
+    h: u16,
+    rows: u16,
+    mut draw: impl FnMut(u16, &mut Band<'_, Rgb565>),
+) -> (Vec<Rgb565>, Vec<u16>) {
+    let n = w as usize * rows as usize;
+    let (mut px, mut dp) = (vec![Rgb565(0); n], vec![0u16; n]);
+    let mut band = Band::new(&mut px, Some(&mut dp), w, 0).unwrap();
+    let (mut out, mut out_depth) = (Vec::new(), Vec::new());
+    let mut y0 = 0;
+    while y0 < h {
+        band.move_to(y0);
+        band.clear(Rgb565(0));
+        draw(y0 / rows, &mut band);
         let keep = (w as usize * (h - y0).min(rows) as usize).min(n);
         out.extend_from_slice(&band.pixels()[..keep]);
         out_depth.extend_from_slice(&band.depth().unwrap()[..keep]);
@@ -416,25 +429,12 @@ fn render_shared<T: Real>(s: &Scene<T>, rows: u16) -> (Vec<Rgb565>, Vec<u16>) {
     for (a, b) in cores[0].iter().zip(&cores[1]) {
         assert_eq!(a.rows(), b.rows());
     }
-    let n = w as usize * rows as usize;
-    let (mut px, mut dp) = (vec![Rgb565(0); n], vec![0u16; n]);
-    let mut band = Band::new(&mut px, Some(&mut dp), w, 0).unwrap();
-    let (mut out, mut out_depth) = (Vec::new(), Vec::new());
-    let mut y0 = 0;
-    while y0 < h {
-        band.move_to(y0);
-        band.clear(Rgb565(0));
-        let core = &cores[usize::from(y0 / rows) % 2];
-        for (p, m) in core.iter().zip(&s.meshes) {
-            p.draw(&s.camera, &mut band, &Lit::new(&lights, &m.3), &m.4, &table)
+    in_bands(w, h, rows, |k, band| {
+        for (p, m) in cores[usize::from(k) % 2].iter().zip(&s.meshes) {
+            p.draw(&s.camera, band, &Lit::new(&lights, &m.3), &m.4, &table)
                 .unwrap();
         }
-        let keep = (w as usize * (h - y0).min(rows) as usize).min(n);
-        out.extend_from_slice(&band.pixels()[..keep]);
-        out_depth.extend_from_slice(&band.depth().unwrap()[..keep]);
-        y0 += rows;
-    }
-    (out, out_depth)
+    })
 }
 
 #[test]
