@@ -21,7 +21,7 @@
 //!    a few products; all in 32-bit integers for a triangle of display size, exactly as the
 //!    64-bit fallback), then per covered pixel one
 //!    multiply-add per attribute, a depth compare, and (Gouraud) three loads from an
-//!    [`EncodeTable`]. No division and no `T` arithmetic per pixel in Gouraud mode.
+//!    [`EncodeTable`](super::EncodeTable). No division and no `T` arithmetic per pixel in Gouraud mode.
 //!
 //! The attribute values at a pixel depend only on the triangle and the pixel (the plane is
 //! anchored at the triangle's own bounding box, not at the band), so a band gets exactly its
@@ -36,7 +36,7 @@
 //! - Depth is `far (z - near) / (z (far - near))` (perspective; affine on screen, so it can be
 //!   stepped), linear `(z - near) / (far - near)` (orthographic), 16 bits, smaller is nearer:
 //!   do not mix [`draw`](super::draw) and [`PreparedMesh::draw`] in one depth band.
-//! - Colours go through an [`EncodeTable`] (within one level of [`encode_pixel`](super::encode_pixel)).
+//! - Colours go through an [`EncodeTable`](super::EncodeTable) (within one level of [`encode_pixel`](super::encode_pixel)).
 //! - Interpolated colours are clamped to `[0, 127]` (times the exposure) at the vertices.
 //!
 //! Triangles that cross the near, far or guard-band planes are clipped exactly as in
@@ -54,15 +54,12 @@
 //! division and one normalization in `T`.
 
 use super::edge::{edge_small_or_in_range, FixedPoint, SUBPIXEL};
-use super::scan::{colour_bits, raster, Context, ScreenVertex, COLOUR_FRAC, DEPTH_FRAC};
+use super::scan::{colour_bits, DEPTH_FRAC};
 use super::shade::{Shader, Shading};
-use super::target::{Band, EncodeTable, PixelFormat};
-use super::{
-    clip_polygon, plane_distances, Affine, Camera, ClipVert, DrawOptions, DrawStats, Mesh,
-    RasterError, MAX_CLIPPED,
-};
-use crate::{Real, Rgb, Vec3};
+use super::{plane_distances, Affine, Camera, DrawOptions, Mesh, RasterError};
+use crate::{Real, Vec3};
 
+mod draw;
 mod share;
 pub use share::{VertexColour, VertexScreen};
 
@@ -482,161 +479,6 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         }
         calls
     }
-
-    /// Draws the mesh into `band` with this frame's vertices: Gouraud with the colours of
-    /// [`PreparedMesh::shade`], or per pixel with `shader` (`opts.shading`); colours encoded
-    /// through `table` (`opts.encoding` is not used: the table's encoding is). Depth-tested if
-    /// the band has a depth band (see the module docs for the depth value).
-    ///
-    /// Accuracy: the same pixels as [`draw`](super::draw) (the same snapped vertices and fill
-    /// rule); colours as described in the module docs. Cost: see the module docs.
-    ///
-    /// # Errors
-    /// [`RasterError::BadSize`] (`"band width"`) when the band is not as wide as the camera's
-    /// viewport; [`RasterError::Model`] with [`crate::Error::OutOfRange`] (`"vertex"`) when
-    /// [`PreparedMesh::transform`] put a vertex beyond [`Real::COORDINATE_LIMIT`] (fixed point
-    /// only; nothing is drawn).
-    pub fn draw<P, S>(
-        &self,
-        camera: &Camera<T>,
-        band: &mut Band<'_, P>,
-        shader: &S,
-        opts: &DrawOptions<T>,
-        table: &EncodeTable,
-    ) -> Result<DrawStats, RasterError>
-    where
-        P: PixelFormat,
-        S: Shader<T> + ?Sized,
-    {
-        if band.width() != camera.width {
-            return Err(RasterError::BadSize("band width"));
-        }
-        if self.out_of_range {
-            return Err(crate::Error::OutOfRange("vertex").into());
-        }
-        let mut stats = DrawStats {
-            triangles: self.mesh.triangles().len() as u32,
-            ..DrawStats::default()
-        };
-        let row0 = band.y0() as i32;
-        let row1 = (band.y0() as i32 + band.rows() as i32).min(camera.height as i32);
-        if row0 >= row1 || self.rows.1 <= row0 || self.rows.0 >= row1 {
-            return Ok(stats);
-        }
-        // Sub-pixel rows of the band's first and last pixel centres.
-        let (sy0, sy1) = (row0 * SUBPIXEL, row1 * SUBPIXEL);
-        let ctx = Context {
-            camera,
-            shader,
-            opts,
-            table,
-            row0,
-            row1,
-        };
-        let tris = self.mesh.triangles();
-        if self.rows_cull == Some(opts.cull) {
-            for (tri, r) in tris.iter().zip(self.tri_rows.iter()) {
-                if r.misses(row0, row1) {
-                    continue;
-                }
-                // Its row and culling tests passed: `None` skips them.
-                self.draw_triangle(&ctx, band, tri, None, &mut stats);
-            }
-        } else {
-            for tri in tris {
-                self.draw_triangle(&ctx, band, tri, Some((sy0, sy1)), &mut stats);
-            }
-        }
-        Ok(stats)
-    }
-
-    /// One triangle of [`PreparedMesh::draw`]. `sy`: the sub-pixel rows of the band's first
-    /// and last pixel centres for the row and culling tests of an unclipped triangle, or
-    /// `None` when its [`TriangleRows`] has passed them.
-    #[inline(always)]
-    fn draw_triangle<P, S>(
-        &self,
-        ctx: &Context<'_, T, S>,
-        band: &mut Band<'_, P>,
-        tri: &[u16; 3],
-        sy: Option<(i32, i32)>,
-        stats: &mut DrawStats,
-    ) where
-        P: PixelFormat,
-        S: Shader<T> + ?Sized,
-    {
-        let Some([a, b, c]) = corners(self.verts, tri) else {
-            return;
-        };
-        if a.outside & b.outside & c.outside != 0 {
-            return;
-        }
-        if (a.outside | b.outside | c.outside) == 0 {
-            if let Some((sy0, sy1)) = sy {
-                let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
-                let hi = a.fp.y.max(b.fp.y).max(c.fp.y);
-                if hi < sy0 || lo > sy1 || !faces(&[a.fp, b.fp, c.fp], ctx.opts.cull) {
-                    return;
-                }
-            }
-            let fv = [a, b, c].map(ScreenVertex::from_prepared);
-            raster(ctx, band, &fv, stats);
-        } else {
-            self.draw_clipped(ctx, band, [a, b, c], stats);
-        }
-    }
-
-    /// A triangle that crosses a clip plane: clipped as [`draw`](super::draw) clips, its fan
-    /// drawn by the same integer loop.
-    fn draw_clipped<P, S>(
-        &self,
-        ctx: &Context<'_, T, S>,
-        band: &mut Band<'_, P>,
-        v: [&PreparedVertex<T>; 3],
-        stats: &mut DrawStats,
-    ) where
-        P: PixelFormat,
-        S: Shader<T> + ?Sized,
-    {
-        let camera = ctx.camera;
-        let cv = v.map(|v| ClipVert {
-            // The clip coordinates again (rare: only clipped triangles need them).
-            c: camera.clip(v.p),
-            p: v.p,
-            n: v.n,
-            col: Rgb::new(
-                T::from_fixed_i32(v.colour[0], COLOUR_FRAC),
-                T::from_fixed_i32(v.colour[1], COLOUR_FRAC),
-                T::from_fixed_i32(v.colour[2], COLOUR_FRAC),
-            ),
-        });
-        let mut poly = [cv[0]; MAX_CLIPPED];
-        let count = clip_polygon(cv, camera.near, camera.far, &mut poly);
-        let range = camera.far - camera.near;
-        let (a, b, inv_range) = (
-            camera.far / range,
-            camera.far * camera.near / range,
-            T::ONE / range,
-        );
-        let mut sv = [ScreenVertex::<T>::EMPTY; MAX_CLIPPED];
-        for (s, cv) in sv.iter_mut().zip(&poly[..count]) {
-            if !(cv.c[3] > T::ZERO) {
-                return;
-            }
-            let (fp, depth, iw) = project(camera, &cv.c, a, b, inv_range);
-            *s = ScreenVertex {
-                fp,
-                depth,
-                colour: colour_bits(cv.col, T::ONE),
-                p: cv.p,
-                n: cv.n,
-                iw,
-            };
-        }
-        for i in 1..count.saturating_sub(1) {
-            raster(ctx, band, &[&sv[0], &sv[i], &sv[i + 1]].map(|s| *s), stats);
-        }
-    }
 }
 
 /// The three vertices of triangle `tri`, or `None` if an index is out of range.
@@ -679,21 +521,6 @@ fn project<T: Real>(
         (c[2] - camera.near) * inv_range
     };
     (fp, q.clamp01().to_fixed_i32(DEPTH_FRAC), iw)
-}
-
-// (Here rather than in `scan`: it reads `PreparedVertex`'s fields.)
-impl<T: Real> ScreenVertex<T> {
-    #[inline]
-    fn from_prepared(v: &PreparedVertex<T>) -> Self {
-        ScreenVertex {
-            fp: v.fp,
-            depth: v.depth,
-            colour: v.colour,
-            p: v.p,
-            n: v.n,
-            iw: v.iw,
-        }
-    }
 }
 
 /// The screen rows `[top, bottom)` a mesh can cover: all rows if a vertex is clipped (`clipped`),
