@@ -538,7 +538,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
     /// and a division by the step's integer ([`Real::div_u32`]; on fixed point, 4 products in
     /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). Measured on the
-    /// Cortex-M0, `Fixed22`, a quad at m = 16: 15 009 instructions (20 419 with the recurrence
+    /// Cortex-M0, `Fixed22`, a quad at m = 16: 14 320 instructions (20 419 with the recurrence
     /// in the type's own arithmetic and the unit vectors' products saturating). Scale-free on
     /// the float
     /// types: an edge whose coordinates or products would leave the normal range (beyond

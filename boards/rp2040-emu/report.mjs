@@ -105,7 +105,7 @@ function table(logs) {
 }
 
 /**
- * The per-stage table: the stages of the last frame of each run, from the firmware's own defmt
+ * The per-stage table: the stages of the last frame each run measured, from the firmware's own defmt
  * line (`frame N: T us (setup a, transform b, ...)`, timed with the RP2040's 1 MHz timer), in
  * microseconds and in cycles at 125 MHz.
  */
@@ -115,7 +115,9 @@ function stageTable(logs) {
   for (const log of logs) {
     const s = summaryOf(log);
     const frames = s.defmt.filter((l) => /^frame \d+: \d+ us/.test(l.text ?? ''));
-    const last = frames[frames.length - 1];
+    // The last frame the run measured (a faster firmware may log one more before it stops).
+    const measured = s.frames.length ? s.frames[s.frames.length - 1].n : null;
+    const last = frames.filter((l) => Number(l.text.match(/^frame (\d+)/)[1]) === measured).pop() ?? frames[frames.length - 1];
     if (!last) continue;
     const [, n, total, inner] = last.text.match(/^frame (\d+): (\d+) us[^(]*\(([^)]*)\)/) ?? [];
     if (!inner) continue;
