@@ -744,6 +744,27 @@ fn raster<T: Real>(s: &mut Src<'_, '_>) {
         let _ = p.shade(&camera, &shader, &opts);
         let _ = p.rows();
     }
+    // Two cores sharing the frame: each transforms and shades half the vertices, and takes the
+    // other half's screen data and colours.
+    let (mut st0, mut st1) = (
+        vec![PreparedVertex::<T>::EMPTY; nv],
+        vec![PreparedVertex::<T>::EMPTY; nv],
+    );
+    let mut shared = PreparedMesh::new(mesh, &mut st0)
+        .ok()
+        .zip(PreparedMesh::new(mesh, &mut st1).ok());
+    if let Some((a, b)) = shared.as_mut() {
+        a.transform_some(&camera, &transform, true, |i| i % 2 == 0);
+        b.transform_some(&camera, &transform, true, |i| i % 2 == 1);
+        let (sa, sb): (Vec<_>, Vec<_>) = (a.screen().collect(), b.screen().collect());
+        a.set_screen(&camera, sb, |i| i % 2 == 1);
+        b.set_screen(&camera, sa, |i| i % 2 == 0);
+        let _ = a.shade_some(&camera, &shader, &opts, |i| i % 2 == 0);
+        let _ = b.shade_some(&camera, &shader, &opts, |i| i % 2 == 1);
+        let (ca, cb): (Vec<_>, Vec<_>) = (a.colours().collect(), b.colours().collect());
+        a.set_colours(cb, |i| i % 2 == 1);
+        b.set_colours(ca, |i| i % 2 == 0);
+    }
     let tab = table::<T>(opts.encoding);
     let mut y0 = 0u16;
     while y0 < camera.height() {
@@ -752,6 +773,10 @@ fn raster<T: Real>(s: &mut Src<'_, '_>) {
         let _ = draw(&camera, &mut band, &mesh, &transform, &shader, &opts);
         if let Some(p) = &prepared {
             let _ = p.draw(&camera, &mut band, &shader, &opts, &tab);
+        }
+        if let Some((a, b)) = &shared {
+            let _ = a.draw(&camera, &mut band, &shader, &opts, &tab);
+            let _ = b.draw(&camera, &mut band, &shader, &opts, &tab);
         }
         y0 = y0.saturating_add(rows);
     }
