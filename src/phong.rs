@@ -63,7 +63,7 @@ pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
 use crate::polygon::{
     arc_axis_form, cos_power_sums, for_each_clipped_edge, near_limit, phong_near_log2,
-    products_in_range, ClippedEdge, PolygonLight,
+    phong_negligible, products_in_range, ClippedEdge, PolygonLight,
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
@@ -452,6 +452,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         let r_min = near_limit::<T>(phong_near_log2(m));
         if self.in_plane(p) {
             self.resolved_in_plane(p, r_min)?;
+            return Ok(T::ZERO);
+        }
+        // Fixed point: a term provably below 2^-24 is 0 (`polygon/negligible.rs`).
+        // Fixed point: a term provably below 2^-24 is 0 (`polygon/negligible.rs`).
+        if T::RESOLUTION > T::ZERO && phong_negligible(self.vertices(), p, ru, lobe, r_min) {
             return Ok(T::ZERO);
         }
         let mut beside = false;

@@ -54,11 +54,15 @@ use heapless::Vec;
 #[cfg(any(feature = "phong", feature = "moments"))]
 mod arc;
 mod edge;
+#[cfg(feature = "phong")]
+mod negligible;
 mod validate;
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use arc::{arc_axis_form, cos_power_sums};
 use edge::edge_atan_term_fixed;
 pub(crate) use edge::{edge_angle_term, products_in_range, rescaled_products, scaled_to_unit};
+#[cfg(feature = "phong")]
+pub(crate) use negligible::phong_negligible;
 use validate::validate_polygon;
 pub(crate) use validate::validate_polygon_f64;
 
@@ -184,18 +188,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// up to 3.5 r; 3 is the middle.
     #[inline]
     pub(crate) fn in_plane(&self, p: Vec3<T>) -> bool {
-        // (A polygon has at least 3 vertices: `first` only spares the bounds check.)
-        let Some(&v0) = self.verts.first() else {
-            return true;
-        };
-        let d = p - v0;
-        let dist = self.normal.dot(d);
-        let tol = if T::RESOLUTION > T::ZERO {
-            T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
-        } else {
-            T::from_f64(4.0) * T::EPSILON * d.max_abs()
-        };
-        !(dist.abs() > tol)
+        in_plane(&self.verts, self.normal, p)
     }
 
     /// For a `p` that [`PolygonLight::in_plane`] counts as in the plane: `Ok(())` where that is
@@ -214,6 +207,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// the face within the type's rounding too (measured: 0 for f64's 0.16 at 1.2 units of
     /// `2^-22` above the plane, 220 from a vertex).
     #[inline]
+    #[cfg_attr(not(any(feature = "phong", feature = "moments")), allow(dead_code))]
     pub(crate) fn resolved_in_plane(&self, p: Vec3<T>, r_min: T) -> Result<(), Error> {
         if T::RESOLUTION > T::ZERO && over_face_or_near(&self.verts, self.normal, p, r_min.to_f64())
         {
@@ -237,7 +231,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         p.check_position("p")?;
         let n = n.try_unit("n")?.into_inner();
         if T::RESOLUTION > T::ZERO {
-            return self.try_lambert_fixed(p, n);
+            return lambert_fixed(&self.verts, self.normal, p, n);
         }
         if self.in_plane(p) {
             return Ok(T::ZERO);
@@ -251,39 +245,6 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             #[inline(always)]
             |e| sum += e.lambert_term(n),
         );
-        Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
-    }
-
-    /// [`PolygonLight::try_lambert`] for fixed point, after the checks of `p` and `n` (unit):
-    /// with the tests of [`near_limit`] (a `p` too close to the boundary is
-    /// [`Error::Unresolved`]). One copy for every kind of normal: out of line on soft-float
-    /// targets, where the copies inlined into each caller cost about 3 KiB of flash apiece
-    /// (the Cortex-M0 budget image), for a call's few instructions.
-    #[cfg_attr(target_abi = "eabihf", inline)]
-    #[cfg_attr(not(target_abi = "eabihf"), inline(never))]
-    fn try_lambert_fixed(&self, p: Vec3<T>, n: Vec3<T>) -> Result<T, Error> {
-        let r_min = near_limit::<T>(LAMBERT_NEAR_LOG2);
-        if self.in_plane(p) {
-            self.resolved_in_plane(p, r_min)?;
-            return Ok(T::ZERO);
-        }
-        let mut sum = T::ZERO;
-        let mut beside = false;
-        let near = for_each_clipped_edge(
-            &self.verts,
-            p,
-            n,
-            r_min,
-            #[inline(always)]
-            |e| {
-                let (term, too_near) = e.lambert_term_resolved(n, r_min);
-                sum += term;
-                beside |= too_near;
-            },
-        );
-        if near || beside {
-            return Err(Error::Unresolved("p"));
-        }
         Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
     }
 
@@ -514,6 +475,64 @@ impl<T: Real> ApexFan<T> {
     pub(crate) fn total(&self) -> T {
         self.sum
     }
+}
+
+/// [`PolygonLight::in_plane`] on the polygon's vertices and unit normal.
+#[inline]
+fn in_plane<T: Real>(verts: &[Vec3<T>], normal: Vec3<T>, p: Vec3<T>) -> bool {
+    // (A polygon has at least 3 vertices: `first` only spares the bounds check.)
+    let Some(&v0) = verts.first() else {
+        return true;
+    };
+    let d = p - v0;
+    let dist = normal.dot(d);
+    let tol = if T::RESOLUTION > T::ZERO {
+        T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
+    } else {
+        T::from_f64(4.0) * T::EPSILON * d.max_abs()
+    };
+    !(dist.abs() > tol)
+}
+
+/// [`PolygonLight::try_lambert`] for fixed point (`verts` and the unit `normal` of a validated
+/// polygon), after the checks of `p` and `n` (unit): with the tests of [`near_limit`] (a `p`
+/// too close to the boundary is [`Error::Unresolved`]). One copy for every kind of normal: out of line on soft-float
+/// targets, where the copies inlined into each caller cost about 3 KiB of flash apiece
+/// (the Cortex-M0 budget image), for a call's few instructions; and one copy for every
+/// capacity `N` (the polygon as a slice), for the same reason.
+#[cfg_attr(target_abi = "eabihf", inline)]
+#[cfg_attr(not(target_abi = "eabihf"), inline(never))]
+fn lambert_fixed<T: Real>(
+    verts: &[Vec3<T>],
+    normal: Vec3<T>,
+    p: Vec3<T>,
+    n: Vec3<T>,
+) -> Result<T, Error> {
+    let r_min = near_limit::<T>(LAMBERT_NEAR_LOG2);
+    if in_plane(verts, normal, p) {
+        if over_face_or_near(verts, normal, p, r_min.to_f64()) {
+            return Err(Error::Unresolved("p"));
+        }
+        return Ok(T::ZERO);
+    }
+    let mut sum = T::ZERO;
+    let mut beside = false;
+    let near = for_each_clipped_edge(
+        verts,
+        p,
+        n,
+        r_min,
+        #[inline(always)]
+        |e| {
+            let (term, too_near) = e.lambert_term_resolved(n, r_min);
+            sum += term;
+            beside |= too_near;
+        },
+    );
+    if near || beside {
+        return Err(Error::Unresolved("p"));
+    }
+    Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
 }
 
 /// Walks the ring `verts` seen from `p`, clipped to the half-space `(v - p).k >= 0`, and calls

@@ -1,0 +1,307 @@
+//! A proof, before the recurrence, that a polygon's Phong term is negligible: fixed point's
+//! early out of [`PolygonLight::try_phong`](crate::PolygonLight::try_phong).
+//!
+//! # The bound
+//! The term is `(m+1)/(2 pi) \int_W (r.u)^m dw` over the directions `u` that the polygon
+//! covers as seen from `p` (`W`, its winding region) and above the horizon `r.u >= 0`. If
+//! `r.u <= c` on all of it, `W` lies in the band `0 <= r.u <= c`, and the integral over that
+//! whole band is `2 pi c^(m+1)/(m+1)`: the term is at most `c^(m+1)`. With
+//! `c^(m+1) <= 2^-24`, a quarter of `Fixed22`'s unit, 0 is as good an answer as the
+//! recurrence's (whose own error is several units, `docs/accuracy.md`).
+//!
+//! # Where `r.u` is largest
+//! `r.u` has no critical point on the sphere but `r` (its maximum) and `-r`. So if `r` is not
+//! in `W`, its maximum over `W` (closed) lies on `W`'s boundary: on the polygon's edges (great
+//! circle arcs between the vertex directions `a_i`), or on the horizon, where it is 0.
+//! - **`r` outside.** `W` lies in the convex hull of the `a_i` (the winding number is 0 outside
+//!   it). An edge's great circle with `r` strictly on one side and every other vertex on the
+//!   other separates `r` from that hull. One such edge is looked for (a convex polygon always
+//!   has one when `r` is outside; no convexity is assumed).
+//! - **On an edge** from `a` to `b` (the arc shorter than 120 degrees here), `r.u` is a
+//!   sinusoid of the arc length. Its slope at `a` is proportional to `D_a = r.b - (r.a)(a.b)`
+//!   and at `b` to `D_b = (r.b)(a.b) - r.a`; the maximum is inside the arc only if `D_a > 0 >
+//!   D_b`, and is then the length of `r`'s projection on the arc's plane:
+//!   `|P r|^2 (1 - (a.b)^2) = (r.a)^2 + (r.b)^2 - 2 (r.a)(r.b)(a.b)`, with `1 - (a.b)^2 =
+//!   |a x b|^2`. Otherwise it is at a vertex.
+//!
+//! # Rounding
+//! The test runs in the type's own arithmetic on rounded unit vectors (errors of a few `2^-22`).
+//! Every decision has a margin far above that: the threshold `c` is lowered by `2^-6` of
+//! itself (and is at least 1/4, `m >= 11`), the slopes and sides must clear `2^-14`, the
+//! tangent test needs `|a x b|^2 >= 2^-5`. Where a margin is not met the test answers "not
+//! proven", and the recurrence runs as before: the early out can only skip work, never change
+//! an answer by more than `2^-24`.
+//!
+//! # What it costs and saves
+//! Measured on the Cortex-M0 (`Fixed22`, exact QEMU instructions of the budget firmware's
+//! `demo_shade` cases: the board demo's shader at 16 points, m = 20 and 48, `QEMU_BUDGET_ONLY=
+//! demo_shade`): 13 of the 32 calls are proven negligible, each 6 600 to 20 300 instructions
+//! cheaper; 15 pay the quick rejection, 250 to 670; 4 (m = 48) pass it and fail the edge
+//! test, 3 100 to 3 700. All 32: 859 386 -> 752 716 instructions (-12.4 %). The budget
+//! table's `phong_polygon` quad (m = 16), whose median case is not negligible: 14 320 ->
+//! 14 806. Flash: about 1.6 KiB (the edge test's products out of line).
+
+use crate::lobe::PhongLobe;
+use crate::{Real, UnitVec3, Vec3};
+
+/// The most vertices [`phong_negligible`] tests (a larger polygon is never proven negligible).
+const MAX_VERTICES: usize = 8;
+
+/// Whether the Phong term of the polygon `verts` at `p` about `r` is provably at most `2^-24`
+/// ([`PhongLobe`]'s `negligible_cos`; the module doc derives the test). Not proven (`false`)
+/// for the floats, `m < 11`, more than [`MAX_VERTICES`] vertices, a vertex within `4 r_min`
+/// of `p` (where the recurrence's own tests report
+/// [`Error::Unresolved`](crate::Error::Unresolved)), an edge that subtends more than 120
+/// degrees, and wherever a margin is not met.
+///
+/// A quick rejection first, without normalizing: a vertex `u = v - p` above the threshold,
+/// `(r.u)^2 >= c^2 |u|^2` with `r.u > 0` (rounding there can only reject a case that might
+/// have passed, never pass one). Most shading points that see the polygon in their lobe stop
+/// there, at the first such vertex.
+///
+/// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 250 to 670 instructions where the
+/// quick rejection stops it, about 3 000 for the whole test (the module doc).
+#[inline(never)]
+pub(crate) fn phong_negligible<T: Real>(
+    verts: &[Vec3<T>],
+    p: Vec3<T>,
+    r: UnitVec3<T>,
+    lobe: &PhongLobe<T>,
+    r_min: T,
+) -> bool {
+    let (lim, lim2) = lobe.negligible_cos;
+    let n = verts.len();
+    if !(T::RESOLUTION > T::ZERO) || !(lim > T::ZERO) || n > MAX_VERTICES {
+        return false;
+    }
+    let rv = [r.x, r.y, r.z];
+    let arr = |v: Vec3<T>| [v.x, v.y, v.z];
+    for v in verts {
+        // The sealed products without saturation tests: `u`'s components are differences of
+        // coordinates within the type's limit (at most 8 for `Fixed22`, where its products'
+        // 16-bit halves stay within `i32` and both sums below 200), so they are exact here;
+        // and a wrong rejection would only cost time.
+        let u = arr(*v - p);
+        let d = T::dot3_small(rv, u);
+        if d > T::ZERO && !(d * d < lim2 * T::dot3_small(u, u)) {
+            return false;
+        }
+    }
+    // Every vertex's direction and its cosine, below the threshold.
+    let mut dirs = [([T::ZERO; 3], T::ZERO); MAX_VERTICES];
+    let near = r_min * T::from_u32(4);
+    for (v, entry) in verts.iter().zip(dirs.iter_mut()) {
+        let u = *v - p;
+        if T::all_within(arr(u), near) {
+            return false;
+        }
+        let Some(a) = u.to_unit() else {
+            return false;
+        };
+        let c = dot(rv, arr(*a));
+        if !(c < lim) {
+            return false;
+        }
+        *entry = (arr(*a), c);
+    }
+    let dirs = &dirs[..n.min(MAX_VERTICES)];
+    edges_below(dirs, rv, lim2)
+}
+
+/// The edge half of [`phong_negligible`]'s test on every vertex's `(a, r.a)` in ring order:
+/// each edge's own maximum of `r.a` below the threshold (squared, `lim2`), and one edge whose
+/// great circle separates `r` from the other vertices.
+fn edges_below<T: Real>(dirs: &[([T; 3], T)], rv: [T; 3], lim2: T) -> bool {
+    let n = dirs.len();
+    let margin = T::from_fixed_i32(1, 14);
+    let min_cross_sq = T::from_fixed_i32(1, 5);
+    let minus_half = -T::HALF;
+    let mut separated = false;
+    for i in 0..n {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        let (Some(&(av, ca)), Some(&(bv, cb))) = (dirs.get(i), dirs.get(j)) else {
+            return false;
+        };
+        let e = dot(av, bv);
+        if e < minus_half {
+            return false;
+        }
+        let g = cross(av, bv);
+        // The arc's own maximum, where its slopes say it is inside.
+        let slope_a = cb - mul(ca, e);
+        let slope_b = mul(cb, e) - ca;
+        if slope_a > -margin && slope_b < margin {
+            let gg = dot(g, g);
+            if gg < min_cross_sq {
+                return false;
+            }
+            let lhs = mul(ca, ca) + mul(cb, cb) - mul(T::TWO * ca, mul(cb, e));
+            if !(lhs < mul(lim2, gg)) {
+                return false;
+            }
+        }
+        // A great circle between r and the other vertices.
+        if !separated {
+            let rg = dot(rv, g);
+            if rg.abs() > margin {
+                let out = rg > T::ZERO;
+                separated = dirs.iter().enumerate().all(|(k, &(d, _))| {
+                    let s = dot(g, d);
+                    k == i || k == j || if out { s < -margin } else { s > margin }
+                });
+            }
+        }
+    }
+    separated
+}
+
+/// [`Real`]'s sealed `dot3_small`, out of line: the edge test's products, called once each
+/// where inlining them would cost the M0 budget firmware's flash about 1.5 KiB for a path that
+/// runs only for the candidates.
+#[inline(never)]
+fn dot<T: Real>(a: [T; 3], b: [T; 3]) -> T {
+    T::dot3_small(a, b)
+}
+
+/// `mul_small`, out of line (as [`dot`]).
+#[inline(never)]
+fn mul<T: Real>(a: T, b: T) -> T {
+    T::mul_small(a, b)
+}
+
+/// `cross3_small`, out of line (as [`dot`]).
+#[inline(never)]
+fn cross<T: Real>(a: [T; 3], b: [T; 3]) -> [T; 3] {
+    T::cross3_small(a, b)
+}
+
+#[cfg(all(test, feature = "fixed"))]
+mod tests {
+    use super::*;
+    use crate::{Fixed22, PolygonLight};
+
+    /// A xorshift generator of uniform values in [0, 1).
+    fn uniform(seed: u32) -> impl FnMut() -> f64 {
+        let mut x = seed;
+        move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            f64::from(x) / 4_294_967_296.0
+        }
+    }
+
+    /// Every case the test proves negligible is: f64's term (the reference, validated against
+    /// quadrature by `tests/`) below `2^-24` at the same (rounded) inputs, on random
+    /// rectangles, concave darts and triangles, with `r` aimed near the polygon's edges and
+    /// vertices at about the threshold's angle (where the arcs' maxima decide), and the
+    /// exponents from 11 to 255. The count of proven cases keeps the test from passing
+    /// vacuously, and Fixed22's `try_phong` answers exactly 0 for each.
+    #[test]
+    fn every_proven_term_is_below_2_pow_minus_24() {
+        let mut rnd = uniform(0x2545_F491);
+        let coord = |rnd: &mut dyn FnMut() -> f64, s: f64| (rnd() * 2.0 - 1.0) * s;
+        let to64 = |v: Vec3<Fixed22>| Vec3::<f64>::from_f64(v.to_f64());
+        // Cases, those proven, and those proven with part of the polygon above the horizon.
+        let (mut cases, mut proven, mut above) = (0u32, 0u32, 0u32);
+        for i in 0..60_000u32 {
+            // A plane frame: a random unit normal and two axes in the plane.
+            let n = Vec3::<f64>::new(
+                coord(&mut rnd, 1.0),
+                coord(&mut rnd, 1.0),
+                coord(&mut rnd, 1.0),
+            );
+            let Some(n) = n.normalize() else { continue };
+            let ax = n.any_perpendicular();
+            let Some(ax) = ax.normalize() else { continue };
+            let ay = n.cross(ax);
+            let c = Vec3::new(
+                coord(&mut rnd, 2.0),
+                coord(&mut rnd, 2.0),
+                coord(&mut rnd, 2.0),
+            );
+            let (w, h) = (0.05 + rnd() * 1.5, 0.05 + rnd() * 1.5);
+            let shape: &[(f64, f64)] = match i % 3 {
+                0 => &[(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+                1 => &[(-1.0, -1.0), (1.0, 0.0), (-1.0, 1.0), (-0.3, 0.0)],
+                _ => &[(-1.0, -1.0), (1.0, -0.5), (0.0, 1.0)],
+            };
+            let mut verts = heapless::Vec::<Vec3<Fixed22>, 8>::new();
+            for &(x, y) in shape {
+                let v = c + ax * (x * w) + ay * (y * h);
+                let _ = verts.push(Vec3::from_f64(v.to_f64()));
+            }
+            let Ok(light) = PolygonLight::<Fixed22, 8>::new(&verts) else {
+                continue;
+            };
+            let p = Vec3::new(
+                coord(&mut rnd, 3.5),
+                coord(&mut rnd, 3.5),
+                coord(&mut rnd, 3.5),
+            );
+            let pf = Vec3::<Fixed22>::from_f64(p.to_f64());
+            let m = [11, 12, 16, 20, 33, 48, 64, 128, 200, 255][(rnd() * 10.0) as usize % 10];
+            // r: towards a vertex or an edge's midpoint, tilted by about the threshold angle.
+            let k = (rnd() * 8.0) as usize % verts.len();
+            let a = verts[k].to_f64();
+            let b = verts[(k + 1) % verts.len()].to_f64();
+            let t = if i % 2 == 0 { 0.0 } else { 0.5 };
+            let target = Vec3::new(
+                a[0] + (b[0] - a[0]) * t,
+                a[1] + (b[1] - a[1]) * t,
+                a[2] + (b[2] - a[2]) * t,
+            );
+            let Some(to) = (target - to64(pf)).normalize() else {
+                continue;
+            };
+            let angle = libm::acos(libm::pow(2.0, -24.0 / (m as f64 + 1.0))) * (0.8 + rnd() * 0.5);
+            let side = Vec3::new(
+                coord(&mut rnd, 1.0),
+                coord(&mut rnd, 1.0),
+                coord(&mut rnd, 1.0),
+            );
+            let Some(perp) = (side - to * side.dot(to)).normalize() else {
+                continue;
+            };
+            let rd = to * libm::cos(angle) + perp * libm::sin(angle);
+            let Some(ru) = Vec3::<Fixed22>::from_f64(rd.to_f64()).to_unit() else {
+                continue;
+            };
+            let Ok(lobe) = PhongLobe::<Fixed22>::new(m) else {
+                continue;
+            };
+            cases += 1;
+            let r_min = crate::polygon::near_limit::<Fixed22>(crate::polygon::phong_near_log2(m));
+            if !phong_negligible(light.vertices(), pf, ru, &lobe, r_min) {
+                continue;
+            }
+            proven += 1;
+            let vf: heapless::Vec<Vec3<f64>, 8> =
+                verts.iter().map(|v| Vec3::from_f64(v.to_f64())).collect();
+            let Ok(reference) = PolygonLight::<f64, 8>::new(&vf) else {
+                continue;
+            };
+            let Ok(lobe64) = PhongLobe::<f64>::new(m) else {
+                continue;
+            };
+            let r64 = Vec3::<f64>::from_f64(ru.into_inner().to_f64());
+            let exact = reference.phong(&lobe64, to64(pf), r64);
+            if verts.iter().any(|v| (to64(*v) - to64(pf)).dot(r64) > 0.0) {
+                above += 1;
+            }
+            assert!(
+                exact < 1.0 / 16_777_216.0,
+                "case {i}: m = {m}, term {exact:e}"
+            );
+            assert_eq!(
+                light.try_phong(&lobe, pf, ru),
+                Ok(Fixed22::ZERO),
+                "case {i}"
+            );
+        }
+        // Not vacuous: a good share of the cases aimed at the threshold are proven, most of
+        // them with a term that is not 0 (measured: 13 360 of 60 000 proven, 12 732 with part
+        // of the polygon above the horizon; the largest term 3.7e-9).
+        assert!(above * 10 > cases, "{proven} of {cases} ({above} above)");
+    }
+}
