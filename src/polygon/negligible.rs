@@ -34,12 +34,15 @@
 //!
 //! # What it costs and saves
 //! Measured on the Cortex-M0 (`Fixed22`, exact QEMU instructions of the budget firmware's
-//! `demo_shade` cases: the board demo's shader at 16 points, m = 20 and 48, `QEMU_BUDGET_ONLY=
-//! demo_shade`): 13 of the 32 calls are proven negligible, each 6 600 to 20 300 instructions
-//! cheaper; 15 pay the quick rejection, 250 to 670; 4 (m = 48) pass it and fail the edge
-//! test, 3 100 to 3 700. All 32: 859 386 -> 752 716 instructions (-12.4 %). The budget
-//! table's `phong_polygon` quad (m = 16), whose median case is not negligible: 14 320 ->
-//! 14 806. Flash: about 1.6 KiB (the edge test's products out of line).
+//! `demo_shade` cases: the board demo's shader at 16 points, m = 20 and 48,
+//! `QEMU_BUDGET_ONLY=demo_shade`): 11 of the 32 calls are proven negligible by the whole
+//! test, each 6 500 to 20 200 instructions cheaper; 4 see no vertex above the horizon and
+//! are 164 to 170 cheaper; the other 17 pay the quick rejection, 264 to 730. All 32:
+//! 859 386 -> 740 349 instructions (-13.9 %). The budget table's `phong_polygon` quad
+//! (m = 16), whose median case is not negligible: 14 320 -> 14 857. In the RP2040 demo's
+//! frames (host render of frames 0 and 1, 553 calls): 179 quick rejections, 114 with nothing
+//! above, 258 proven by the whole test, 2 not. Flash: about 1.6 KiB (the edge test's
+//! products out of line).
 
 use crate::lobe::PhongLobe;
 use crate::{Real, UnitVec3, Vec3};
@@ -57,9 +60,10 @@ const MAX_VERTICES: usize = 8;
 /// A quick rejection first, without normalizing: a vertex `u = v - p` above the threshold,
 /// `(r.u)^2 >= c^2 |u|^2` with `r.u > 0` (rounding there can only reject a case that might
 /// have passed, never pass one). Most shading points that see the polygon in their lobe stop
-/// there, at the first such vertex.
+/// there, at the first such vertex. With no vertex above the horizon the term is 0: `true`
+/// unless a vertex is within `r_min` (as the recurrence's clipping answers).
 ///
-/// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 250 to 670 instructions where the
+/// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 264 to 730 instructions where the
 /// quick rejection stops it, about 3 000 for the whole test (the module doc).
 #[inline(never)]
 pub(crate) fn phong_negligible<T: Real>(
@@ -76,16 +80,26 @@ pub(crate) fn phong_negligible<T: Real>(
     }
     let rv = [r.x, r.y, r.z];
     let arr = |v: Vec3<T>| [v.x, v.y, v.z];
+    // The quick rejection, and the case with no vertex above the horizon, which the
+    // recurrence's clipping answers as cheaply: 0, or `Unresolved` for a vertex within `r_min`
+    // (the same tests, `r.u`'s sign and `all_within`, so the same answer).
+    //
+    // The sealed products without saturation tests, which equal `Vec3::dot` and `*` bit for
+    // bit here: `u`'s components are differences of coordinates within the type's limit (at
+    // most 8 for `Fixed22`), so every factor is below 16 and every product and sum below 256,
+    // where `Fixed22`'s 16-bit halves stay within `i32` and nothing saturates.
+    let (mut above, mut near_any) = (false, false);
     for v in verts {
-        // The sealed products without saturation tests: `u`'s components are differences of
-        // coordinates within the type's limit (at most 8 for `Fixed22`, where its products'
-        // 16-bit halves stay within `i32` and both sums below 200), so they are exact here;
-        // and a wrong rejection would only cost time.
         let u = arr(*v - p);
         let d = T::dot3_small(rv, u);
-        if d > T::ZERO && !(d * d < lim2 * T::dot3_small(u, u)) {
+        above |= d >= T::ZERO;
+        near_any |= T::all_within(u, r_min);
+        if d > T::ZERO && !(T::mul_small(d, d) < T::mul_small(lim2, T::dot3_small(u, u))) {
             return false;
         }
+    }
+    if !above {
+        return !near_any;
     }
     // Every vertex's direction and its cosine, below the threshold.
     let mut dirs = [([T::ZERO; 3], T::ZERO); MAX_VERTICES];
