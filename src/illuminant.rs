@@ -435,7 +435,7 @@ mod cap_impls {
             r: UnitVec3<T>,
         ) -> (Rgb<T>, Rgb<T>) {
             match self.cap_at(p) {
-                Ok(cap) => (grey(cap.lambert(n)), grey(cap.phong(lobe.exponent(), r))),
+                Ok(cap) => (grey(cap.lambert(n)), grey(cap.phong(lobe, r))),
                 Err(_) => (black(), black()),
             }
         }

@@ -100,18 +100,24 @@ macro_rules! scene_tests {
                 b: &L2,
                 cases: &[(V3, V3, V3)],
             ) {
-                let lobe = PhongLobe::<T>::new(16).unwrap();
-                for &(p, n, r) in cases {
+                // The exact lobe, and an odd-only one evaluated at m = 17.
+                let lobes = [
+                    PhongLobe::<T>::new(16).unwrap(),
+                    PhongLobe::<T>::odd_only(16).unwrap(),
+                ];
+                for (lobe, &(p, n, r)) in
+                    lobes.iter().flat_map(|l| cases.iter().map(move |c| (l, c)))
+                {
                     let (p, n, r) = (v::<T>(p), u::<T>(n), u::<T>(r));
                     assert_eq!(a.diffuse(p, n).to_f64(), b.diffuse(p, n).to_f64());
-                    assert_eq!(a.phong(&lobe, p, r).to_f64(), b.phong(&lobe, p, r).to_f64());
+                    assert_eq!(a.phong(lobe, p, r).to_f64(), b.phong(lobe, p, r).to_f64());
                     // Both terms in one call: the same bits as the two calls.
-                    let (ad, ap) = a.diffuse_and_phong(&lobe, p, n, r);
-                    let (bd, bp) = b.diffuse_and_phong(&lobe, p, n, r);
+                    let (ad, ap) = a.diffuse_and_phong(lobe, p, n, r);
+                    let (bd, bp) = b.diffuse_and_phong(lobe, p, n, r);
                     assert_eq!(ad.to_f64(), a.diffuse(p, n).to_f64());
-                    assert_eq!(ap.to_f64(), a.phong(&lobe, p, r).to_f64());
+                    assert_eq!(ap.to_f64(), a.phong(lobe, p, r).to_f64());
                     assert_eq!(bd.to_f64(), b.diffuse(p, n).to_f64());
-                    assert_eq!(bp.to_f64(), b.phong(&lobe, p, r).to_f64());
+                    assert_eq!(bp.to_f64(), b.phong(lobe, p, r).to_f64());
                 }
             }
 
