@@ -88,18 +88,17 @@ pub(crate) fn phong_negligible<T: Real>(
     // bit here: `u`'s components are differences of coordinates within the type's limit (at
     // most 8 for `Fixed22`), so every factor is below 16 and every product and sum below 256,
     // where `Fixed22`'s 16-bit halves stay within `i32` and nothing saturates.
-    let (mut above, mut near_any) = (false, false);
+    let mut above = false;
     for v in verts {
         let u = arr(*v - p);
         let d = T::dot3_small(rv, u);
         above |= d >= T::ZERO;
-        near_any |= T::all_within(u, r_min);
         if d > T::ZERO && !(T::mul_small(d, d) < T::mul_small(lim2, T::dot3_small(u, u))) {
             return false;
         }
     }
     if !above {
-        return !near_any;
+        return !verts.iter().any(|v| T::all_within(arr(*v - p), r_min));
     }
     // Every vertex's direction and its cosine, below the threshold.
     let mut dirs = [([T::ZERO; 3], T::ZERO); MAX_VERTICES];
