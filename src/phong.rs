@@ -566,9 +566,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// and a division by the step's integer ([`Real::div_u32`]; on fixed point, 4 products in
     /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). Fixed point, `m >= 11`,
     /// first tries to prove the term below `2^-24` and answers 0 at once
-    /// (`polygon/negligible.rs`: a quick rejection of 264 to 730 instructions on the M0, about
+    /// (`polygon/negligible.rs`: a quick rejection of 200 to 680 instructions on the M0, about
     /// 3 000 for the whole test). Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 14 857 instructions (median of the budget's 16 cases; 14 320 before the test, 20 419
+    /// 14 790 instructions (median of the budget's 16 cases; 14 320 before the test, 20 419
     /// with the recurrence in the type's own arithmetic and the unit vectors' products
     /// saturating). Scale-free on
     /// the float

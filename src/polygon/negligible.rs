@@ -35,14 +35,15 @@
 //! # What it costs and saves
 //! Measured on the Cortex-M0 (`Fixed22`, exact QEMU instructions of the budget firmware's
 //! `demo_shade` cases: the board demo's shader at 16 points, m = 20 and 48,
-//! `QEMU_BUDGET_ONLY=demo_shade`): 11 of the 32 calls are proven negligible by the whole
-//! test, each 6 500 to 20 200 instructions cheaper; 4 see no vertex above the horizon and
-//! are 164 to 170 cheaper; the other 17 pay the quick rejection, 264 to 730. All 32:
-//! 859 386 -> 740 349 instructions (-13.9 %). The budget table's `phong_polygon` quad
-//! (m = 16), whose median case is not negligible: 14 320 -> 14 857. In the RP2040 demo's
-//! frames (host render of frames 0 and 1, 553 calls): 179 quick rejections, 114 with nothing
-//! above, 258 proven by the whole test, 2 not. Flash: about 1.6 KiB (the edge test's
-//! products out of line).
+//! `QEMU_BUDGET_ONLY=demo_shade`), with the cap's early 0 (`phong.rs`) beside it: 15 of the 32
+//! calls skip a recurrence, each 4 700 to 25 500 instructions cheaper; 3 see no vertex above
+//! the horizon (74 cheaper); the other 14 pay the quick rejection, 200 to 680. All 32:
+//! 859 386 -> 686 951 instructions (-20 %; the polygon's test alone: -13.9 %). The budget
+//! table's `phong_polygon` quad (m = 16): 14 320 -> 14 790 at the median, a case the test
+//! rejects (its cases: 7 of 16 cheaper, 1 333 -> 1 286 and 10 985 -> 4 921; 9 dearer, by 229
+//! to 470). In the RP2040 demo's frames (host render of frames 0 and 1, 553 calls): 179 quick
+//! rejections, 114 with nothing above, 258 proven by the whole test, 2 not. Flash: about
+//! 1.6 KiB (the edge test's products out of line).
 
 use crate::lobe::PhongLobe;
 use crate::{Real, UnitVec3, Vec3};
@@ -63,7 +64,7 @@ const MAX_VERTICES: usize = 8;
 /// there, at the first such vertex. With no vertex above the horizon the term is 0: `true`
 /// unless a vertex is within `r_min` (as the recurrence's clipping answers).
 ///
-/// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 264 to 730 instructions where the
+/// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 200 to 680 instructions where the
 /// quick rejection stops it, about 3 000 for the whole test (the module doc).
 #[inline(never)]
 pub(crate) fn phong_negligible<T: Real>(
