@@ -89,6 +89,8 @@ pub mod sh9;
 #[cfg(feature = "shaping")]
 pub mod shaping;
 pub mod sine_power;
+#[cfg(test)]
+mod test_rng;
 pub mod unit;
 pub mod vec3;
 #[cfg(any(feature = "raster", feature = "fixed"))]

@@ -266,16 +266,11 @@ mod tests {
     extern crate std;
     use super::*;
 
-    /// A xorshift generator of `i32`s from `seed`.
+    /// The tests' generator ([`crate::test_rng`]) as `i32`s from `seed`.
     #[allow(dead_code)] // the tests below are feature-gated
     fn xorshift(seed: u32) -> impl FnMut() -> i32 {
-        let mut x = seed;
-        move || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x as i32
-        }
+        let mut next = crate::test_rng::xorshift32(seed);
+        move || next() as i32
     }
 
     /// Operands at the 16-bit halves' boundaries and the ends of the range.

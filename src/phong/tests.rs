@@ -10,13 +10,7 @@ use crate::Fixed22;
 /// often enough that the test is not vacuous.
 #[test]
 fn the_caps_early_zero_is_below_2_pow_minus_24() {
-    let mut x = 0x9E37_79B9u32;
-    let mut rnd = move || {
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        f64::from(x) / 4_294_967_296.0
-    };
+    let mut rnd = crate::test_rng::uniform(0x9E37_79B9);
     let (mut taken, mut worst) = (0u32, 0.0f64);
     for i in 0..200_000u32 {
         let m = [11, 12, 16, 20, 33, 48, 64, 128, 200, 255][i as usize % 10];

@@ -192,18 +192,8 @@ fn cross<T: Real>(a: [T; 3], b: [T; 3]) -> [T; 3] {
 #[cfg(all(test, feature = "fixed"))]
 mod tests {
     use super::*;
+    use crate::test_rng::uniform;
     use crate::{Fixed22, PolygonLight};
-
-    /// A xorshift generator of uniform values in [0, 1).
-    fn uniform(seed: u32) -> impl FnMut() -> f64 {
-        let mut x = seed;
-        move || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            f64::from(x) / 4_294_967_296.0
-        }
-    }
 
     /// Every case the test proves negligible is: f64's term (the reference, validated against
     /// quadrature by `tests/`) below `2^-24` at the same (rounded) inputs, on random

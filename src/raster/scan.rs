@@ -421,13 +421,8 @@ mod tests {
 
     #[test]
     fn the_32_bit_geometry_equals_the_64_bit_one() {
-        let mut x = 0x2545_F491u32;
-        let mut next = |m: u32| {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x % m
-        };
+        let mut state = crate::test_rng::xorshift32(0x2545_F491);
+        let mut next = |m: u32| state() % m;
         let (mut small, mut total) = (0, 0);
         for case in 0..200_000u32 {
             let span = [8, 64, 600, 5_000, 40_000, 70_000][case as usize % 6];
@@ -483,12 +478,9 @@ mod tests {
         for d in [(1 << 31) + 1, u32::MAX - 1, 0xC000_0000, 0xAAAA_AAAB] {
             check(d);
         }
-        let mut x = 0x9E37_79B9u32;
+        let mut next = crate::test_rng::xorshift32(0x9E37_79B9);
         for _ in 0..1_000_000 {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            check(x | (1 << 31));
+            check(next() | (1 << 31));
         }
     }
 

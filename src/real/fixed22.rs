@@ -699,13 +699,7 @@ mod tests {
     #[test]
     #[cfg(feature = "sh9")]
     fn fused_dot_is_exact() {
-        let mut x = 0x9E37_79B9u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut next = crate::test_rng::xorshift32(0x9E37_79B9);
         let lim = 3 << 21;
         for n in 0..300_000 {
             let shift = next() % 32;
@@ -777,13 +771,7 @@ mod tests {
             }
             a += 997;
         }
-        let mut x = 0x2545_F491u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut next = crate::test_rng::xorshift32(0x2545_F491);
         for _ in 0..200_000 {
             let shift = next() % 31;
             let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
