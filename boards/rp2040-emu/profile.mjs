@@ -7,6 +7,7 @@ export class Profile {
     this.functions = elf.functions();
     this.starts = this.functions.map((f) => f.start);
     this.counts = new Map();
+    this.pcs = new Map();
     this.total = 0;
   }
 
@@ -29,9 +30,18 @@ export class Profile {
   }
 
   sample(pc) {
+    this.pcs.set(pc, (this.pcs.get(pc) ?? 0) + 1);
     const name = this.lookup(pc)?.name ?? `?? 0x${pc.toString(16)}`;
     this.counts.set(name, (this.counts.get(name) ?? 0) + 1);
     this.total++;
+  }
+
+  /** Every sampled PC and its count, one `hex count` line each, by address. */
+  pcLines() {
+    return [...this.pcs]
+      .sort((a, b) => a[0] - b[0])
+      .map(([pc, n]) => `${pc.toString(16)} ${n}\n`)
+      .join('');
   }
 
   /** The top `n` functions by share of the samples. */

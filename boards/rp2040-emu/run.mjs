@@ -4,7 +4,11 @@
 // frame, and its defmt log (from RTT). See README.md.
 //
 //   node run.mjs --elf PATH [--frames N] [--dual] [--dump-frames DIR] [--max-cycles C]
-//                [--profile] [--profile-every K] [--until TEXT]
+//                [--profile] [--profile-every K] [--profile-from C] [--profile-pcs FILE] [--until TEXT]
+//
+// --profile-from C samples only from core 0's cycle C on (e.g. the start of frame 1, from a
+// first run's `end_cycle` of frame 0); --profile-pcs FILE also writes every sampled PC with
+// its count (hex address, count), for a per-instruction look at a function inlined into another.
 //
 // --until TEXT runs until a defmt line contains TEXT (a firmware that sends no frames, e.g.
 // `calibrate`), instead of until N frames.
@@ -42,6 +46,8 @@ const { values: opts } = parseArgs({
     'max-cycles': { type: 'string' },
     profile: { type: 'boolean', default: false },
     'profile-every': { type: 'string', default: '997' },
+    'profile-from': { type: 'string', default: '0' },
+    'profile-pcs': { type: 'string' },
     quiet: { type: 'boolean', default: false },
     until: { type: 'string' },
   },
@@ -144,13 +150,15 @@ function drainLog() {
 // --- Run. ---
 const profile = opts.profile ? new Profile(elf) : null;
 const every = Number(opts['profile-every']);
+const profileFrom = Number(opts['profile-from']);
+const sampler = profile ? (pc) => machine.cycles >= profileFrom && profile.sample(pc) : null;
 const started = process.hrtime.bigint();
 const cpuStarted = process.cpuUsage();
 let tailEnd = null;
 let untilSeen = false;
 while (!errors.length && !display.errors.length) {
   const end = Math.min(machine.cycles + CHUNK, maxCycles, tailEnd ?? Infinity);
-  const ok = machine.runTo(end, profile ? (pc) => profile.sample(pc) : null, every);
+  const ok = machine.runTo(end, sampler, every);
   const newLines = drainLog();
   if (!ok) break;
   if (untilSeen) break;
@@ -182,6 +190,7 @@ log(
     `${(machine.cycles / cpuSeconds / 1e6).toFixed(1)} M cycles per CPU second`,
 );
 if (profile) profile.print((l) => console.log(l));
+if (profile && opts['profile-pcs']) writeFileSync(opts['profile-pcs'], profile.pcLines());
 for (const e of errors) console.error(`error: ${e}`);
 
 const summary = {
