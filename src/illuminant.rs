@@ -499,11 +499,14 @@ mod parallelogram_impls {
     impl<T: Real> Illuminant<T> for ParallelogramLight<T> {
         /// `[polygon_lambert]` of the four corners (the parallelogram is validated at
         /// construction, so no polygon is built per sample): accuracy and cost those of
-        /// [`crate::PolygonLight::lambert`] for a quad. 0 in the light's plane.
+        /// [`crate::PolygonLight::lambert`] for a quad. 0 in the light's plane, and for a
+        /// non-finite `p` or one beyond [`Real::COORDINATE_LIMIT`] (fixed point), as
+        /// [`crate::PolygonLight::lambert`] answers.
         #[inline]
         fn diffuse(&self, p: Vec3<T>, n: UnitVec3<T>) -> Rgb<T> {
             let n = n.into_inner();
-            if !p.is_finite() {
+            // (The edge terms' products rely on it: `polygon::edge::offset_products`.)
+            if p.check_position("p").is_err() {
                 return black();
             }
             let verts = self.vertices();

@@ -497,7 +497,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// evaluates exactly.
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for `p`, `w` or `tol`, [`Error::ZeroLength`] for `w`,
+    /// [`Error::NotFinite`] for `p`, `w` or `tol`, [`Error::OutOfRange`] for a fixed-point `p`
+    /// beyond [`Real::COORDINATE_LIMIT`], [`Error::ZeroLength`] for `w`,
     /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]),
     /// [`Error::Unresolved`] for a fixed-point `p` within the type's rounding of the plane,
     /// over the face (see [`PolygonLight::try_lambert`]).
@@ -509,9 +510,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         tol: T,
     ) -> Result<T, Error> {
         check_m::<T>(m)?;
-        if !p.is_finite() {
-            return Err(Error::NotFinite("p"));
-        }
+        p.check_position("p")?;
         if !tol.is_finite() {
             return Err(Error::NotFinite("tol"));
         }
@@ -552,7 +551,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[axial_moment]` with precise errors: see [`PolygonLight::axial_moment`].
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for `p` or `w`, [`Error::ZeroLength`] for `w`,
+    /// [`Error::NotFinite`] for `p` or `w`, [`Error::OutOfRange`] for a fixed-point `p` beyond
+    /// [`Real::COORDINATE_LIMIT`], [`Error::ZeroLength`] for `w`,
     /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]).
     #[inline]
     pub fn try_axial_moment(&self, p: Vec3<T>, w: Vec3<T>, m: u32) -> Result<T, Error> {
@@ -591,7 +591,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// [`PolygonLight::try_axial_moment_within`].
     ///
     /// # Errors
-    /// [`Error::NotFinite`] for `p`, `w`, `v` or `tol`, [`Error::ZeroLength`] for `w` or `v`,
+    /// [`Error::NotFinite`] for `p`, `w`, `v` or `tol`, [`Error::OutOfRange`] for a fixed-point
+    /// `p` beyond [`Real::COORDINATE_LIMIT`], [`Error::ZeroLength`] for `w` or `v`,
     /// [`Error::ExponentOutOfRange`] for `m > MAX_EXPONENT` (255 for [`crate::Fixed22`]),
     /// [`Error::Unresolved`] as [`PolygonLight::try_axial_moment_within`].
     pub fn try_double_axis_moment_within(
@@ -603,9 +604,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         tol: T,
     ) -> Result<T, Error> {
         check_m::<T>(m)?;
-        if !p.is_finite() {
-            return Err(Error::NotFinite("p"));
-        }
+        p.check_position("p")?;
         if !tol.is_finite() {
             return Err(Error::NotFinite("tol"));
         }

@@ -62,8 +62,8 @@ use crate::hemisphere::HemisphereLight;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
 use crate::polygon::{
-    arc_axis_form, cos_power_sums, for_each_clipped_edge, near_limit, phong_near_log2,
-    phong_negligible, products_in_range, ClippedEdge, PolygonLight,
+    arc_axis_form, cos_power_sums, for_each_clipped_edge, near_limit, offset_products,
+    phong_near_log2, phong_negligible, products_in_range, ClippedEdge, PolygonLight,
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
@@ -477,7 +477,6 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return Ok(T::ZERO);
         }
         // Fixed point: a term provably below 2^-24 is 0 (`polygon/negligible.rs`).
-        // Fixed point: a term provably below 2^-24 is 0 (`polygon/negligible.rs`).
         if T::RESOLUTION > T::ZERO && phong_negligible(self.vertices(), p, ru, lobe, r_min) {
             return Ok(T::ZERO);
         }
@@ -514,7 +513,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             // the J terms and the fan alike.
             let terms = match (start, end) {
                 (Some(a), Some((_, rb))) => {
-                    let (g, dot) = (e.ua.cross(e.d), e.ua.dot(e.ub));
+                    // (`p` and the vertices are within the coordinate limit: the offsets'
+                    // products without fixed point's saturation tests, the same bits.)
+                    let (g, dot) = offset_products(e.ua, e.ub, e.d);
                     let (g, dot) = if T::RESOLUTION > T::ZERO {
                         // Fixed point: beside the edge, the limit's test; and where `G` is
                         // small, its products again, exact or scaled (cold).
@@ -568,11 +569,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// first tries to prove the term below `2^-24` and answers 0 at once
     /// (`polygon/negligible.rs`: a quick rejection of 200 to 680 instructions on the M0, about
     /// 3 000 for the whole test). Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 14 790 instructions (median of the budget's 16 cases; 14 320 before the test, 20 419
+    /// 13 898 instructions (median of the budget's 16 cases; 14 790 with the offsets'
+    /// products saturating, `polygon::edge::offset_products`; 14 320 before the test, 20 419
     /// with the recurrence in the type's own arithmetic and the unit vectors' products
-    /// saturating). Scale-free on
-    /// the float
-    /// types: an edge whose coordinates or products would leave the normal range (beyond
+    /// saturating). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond
     /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
     /// scaled by a power of two first, on a cold path that costs nothing when not taken.
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane or

@@ -60,6 +60,8 @@ mod validate;
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use arc::{arc_axis_form, cos_power_sums};
 use edge::edge_atan_term_fixed;
+#[cfg(feature = "phong")]
+pub(crate) use edge::offset_products;
 pub(crate) use edge::{edge_angle_term, products_in_range, rescaled_products, scaled_to_unit};
 #[cfg(feature = "phong")]
 pub(crate) use negligible::phong_negligible;
@@ -256,8 +258,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// an FPU, an edge within a right angle 1 cross product, 4 dot products, 1 sqrt,
     /// 1 division and a degree-9 polynomial instead ([`Real::arc_ratio`]); per horizon
     /// crossing: a few multiply-adds. Measured on a quad (QEMU, median): 692 Cortex-M4F
-    /// instructions in f32 (920 with the arc tangent), 6318 Cortex-M0 instructions in
-    /// `Fixed22`. Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the
+    /// instructions in f32 (920 with the arc tangent), 5 073 Cortex-M0 instructions in
+    /// `Fixed22` (6 325 with the offsets' products saturating: `polygon::edge::offset_products`).
+    /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the
     /// polygon's plane (fixed point: 0 too where [`PolygonLight::try_lambert`] reports
     /// [`Error::Unresolved`], over the face or near the boundary).
     ///
@@ -273,14 +276,14 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     }
 
     /// The solid angle (steradians, in [0, 2 pi]) of the polygon's projection seen from `p`,
-    /// clipped to the hemisphere `u.k >= 0` (`k` any length). 0 when `p` is in the plane or `k`
-    /// is zero. Cost per clipped edge: 2 normalizations, 1 cross product, 4 dot products,
+    /// clipped to the hemisphere `u.k >= 0` (`k` any length). 0 when `p` is in the plane, not
+    /// finite or (fixed point) beyond [`Real::COORDINATE_LIMIT`], or `k` is zero. Cost per clipped edge: 2 normalizations, 1 cross product, 4 dot products,
     /// 1 atan2.
     pub fn clipped_solid_angle(&self, p: Vec3<T>, k: Vec3<T>) -> T {
         let Some(k) = k.normalize() else {
             return T::ZERO;
         };
-        if !p.is_finite() || self.in_plane(p) {
+        if p.check_position("p").is_err() || self.in_plane(p) {
             return T::ZERO;
         }
         let mut acc = ApexFan::new(k);
@@ -485,7 +488,9 @@ fn in_plane<T: Real>(verts: &[Vec3<T>], normal: Vec3<T>, p: Vec3<T>) -> bool {
         return true;
     };
     let d = p - v0;
-    let dist = normal.dot(d);
+    // A unit normal and an offset of at most 8 (fixed point: `p` and the vertices within the
+    // coordinate limit, which every caller checks): the bits of `Vec3::dot`.
+    let dist = T::dot3_small([normal.x, normal.y, normal.z], [d.x, d.y, d.z]);
     let tol = if T::RESOLUTION > T::ZERO {
         T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
     } else {
@@ -543,6 +548,11 @@ fn lambert_fixed<T: Real>(
 /// Returns, for fixed point, whether a vertex (above the horizon or not) or a horizon
 /// crossing lies within `r_min` of `p` by its largest coordinate (the first half of the test
 /// of [`near_limit`]; the caller tests the edges beside `p`); for the floats `false`.
+///
+/// `k` is a unit vector, and `p` and the vertices lie within [`Real::COORDINATE_LIMIT`]
+/// (every caller checks them): the offsets `v - p` are then at most 8 in magnitude on fixed
+/// point, and their products with `k` need no saturation test (the sealed `dot3_small`, the
+/// bits of `Vec3::dot`).
 pub(crate) fn for_each_clipped_edge<T: Real, F>(
     verts: &[Vec3<T>],
     p: Vec3<T>,
@@ -555,7 +565,9 @@ where
 {
     let near_point = |u: Vec3<T>| T::RESOLUTION > T::ZERO && T::all_within([u.x, u.y, u.z], r_min);
     let nv = verts.len();
-    let Some(start) = verts.iter().position(|&v| (v - p).dot(k) >= T::ZERO) else {
+    let kv = [k.x, k.y, k.z];
+    let height = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv);
+    let Some(start) = verts.iter().position(|&v| height(v - p) >= T::ZERO) else {
         // Nothing above: only the vertices' distances to test (fixed point).
         return T::RESOLUTION > T::ZERO && verts.iter().any(|&v| near_point(v - p));
     };
@@ -567,7 +579,7 @@ where
     };
     let (mut v0, mut i1) = (first, start);
     let mut u0 = v0 - p;
-    let mut d0 = u0.dot(k);
+    let mut d0 = height(u0);
     // The start of the current clipped edge (a vertex or a crossing up).
     let mut a0 = u0;
     let mut below0 = false;
@@ -581,7 +593,7 @@ where
         };
         let u1 = v1 - p;
         near |= near_point(u1);
-        let d1 = u1.dot(k);
+        let d1 = height(u1);
         let below1 = d1 < T::ZERO;
         let edge = v1 - v0;
         v0 = v1;

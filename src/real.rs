@@ -35,17 +35,20 @@ pub(crate) mod sealed {
     use core::ops::{Add, Mul, Sub};
 
     pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
-        /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are at most 2 in
-        /// magnitude (unit vectors, and the cross product of two): the value of
+        /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are below 16 in
+        /// magnitude and whose products and their sum are below 512 (unit vectors and the
+        /// cross product of two; offsets between positions within the fixed-point coordinate
+        /// limit, at most 8, and their differences): the value of
         /// [`Vec3::dot`](crate::Vec3::dot), bit for bit. Fixed point leaves out the saturation
-        /// tests its products and sums need elsewhere (its override); outside that range its
-        /// result is unspecified, so only [`UnitVec3`](crate::UnitVec3) calls it.
+        /// tests its products and sums need elsewhere (its override: each product exact
+        /// there, with no intermediate overflow); outside that range its result is
+        /// unspecified, so only callers that keep the bounds call it.
         #[inline(always)]
         fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
             a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
         }
-        /// `a b` for factors of at most 2 in magnitude: the value of `*`, bit for bit (fixed
-        /// point without its saturation test).
+        /// `a b` under the same precondition (factors below 16, the product below 512): the
+        /// value of `*`, bit for bit (fixed point without its saturation test).
         #[inline(always)]
         fn mul_small(a: Self, b: Self) -> Self {
             a * b

@@ -66,8 +66,7 @@ pub(super) fn edge_atan_term_fixed<T: Real>(
     k: Vec3<T>,
     r_min: T,
 ) -> (T, bool) {
-    let g = ua.cross(d);
-    let dot = ua.dot(ub);
+    let (g, dot) = offset_products(ua, ub, d);
     let m = g.max_abs();
     let beside = dot < T::ZERO && m < r_min * d.max_abs();
     // One copy of the finish for both paths (flash: the Cortex-M0 budget image).
@@ -137,10 +136,28 @@ pub(super) fn edge_angle_finish<T: Real>(g: Vec3<T>, m: T, dot: T, k: Vec3<T>) -
     }
     // Scale to avoid overflow of |G|^2 for large coordinates.
     let (g, d) = g.rescale(m);
-    // |G| and 1/|G| together (fixed point: one rsqrt, no division).
-    let (s, inv) = g.dot(g).sqrt_rsqrt();
+    // |G| and 1/|G| together (fixed point: one rsqrt, no division). After the rescaling every
+    // component of `G` is at most 2 and `k` is a unit vector: the products without fixed
+    // point's saturation tests, the bits of `Vec3::dot`.
+    let g = [g.x, g.y, g.z];
+    let (s, inv) = T::dot3_small(g, g).sqrt_rsqrt();
     let theta = (s * d).atan2(dot);
-    (theta * g.dot(k) * inv).finite_or_zero()
+    (theta * T::dot3_small(g, [k.x, k.y, k.z]) * inv).finite_or_zero()
+}
+
+/// `(ua x d, ua.ub)` of a clipped edge, bit for bit [`Vec3::cross`] and [`Vec3::dot`], for the
+/// offsets of positions within [`Real::COORDINATE_LIMIT`] from a point within it (every
+/// caller checks both: the light's constructor its vertices, the model function `p`): then
+/// `ua` and `ub` (vertices or horizon crossings, between two vertices) have coordinates of at
+/// most 8 in magnitude on fixed point, and `d` (their difference) of at most 16. Every product
+/// is then below 128 and every sum below 256, where `Fixed22`'s products need no saturation
+/// test (its sealed `cross3_small` and `dot3_small`, exact for factors below 16 and results
+/// below 512): about 90 fewer Cortex-M0 instructions an edge. The floats: the same operations.
+#[inline(always)]
+pub(crate) fn offset_products<T: Real>(ua: Vec3<T>, ub: Vec3<T>, d: Vec3<T>) -> (Vec3<T>, T) {
+    let a = [ua.x, ua.y, ua.z];
+    let [x, y, z] = T::cross3_small(a, [d.x, d.y, d.z]);
+    (Vec3::new(x, y, z), T::dot3_small(a, [ub.x, ub.y, ub.z]))
 }
 
 /// `(ua x d, ua.ub)` from the edge scaled by a power of two ([`scaled_to_unit`]): the cold

@@ -539,10 +539,10 @@ impl super::sealed::Sealed for Fixed22 {
         let cs = (s2 - rs * rs).sqrt() * inv;
         Some((u, d, rs * inv, cs))
     }
-    /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors of at most 2,
-    /// no saturation test), the sum (at most 12) by wrapping additions: the same bits as
-    /// `Vec3::dot` (whose saturating additions never saturate there). About 40 instead of 95
-    /// instructions on the M0.
+    /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors below 16, no
+    /// saturation test), the sum (below 512 by the precondition) by wrapping additions: the
+    /// same bits as `Vec3::dot` (whose saturating additions never saturate there). About 40
+    /// instead of 95 instructions on the M0.
     #[inline(always)]
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         let p = |k: usize| mul_bits_small(a[k].to_bits(), b[k].to_bits());
@@ -553,7 +553,8 @@ impl super::sealed::Sealed for Fixed22 {
     fn mul_small(a: Self, b: Self) -> Self {
         Fixed22::from_bits(mul_bits_small(a.to_bits(), b.to_bits()))
     }
-    /// As `dot3_small`: each component a difference of two exact products of at most 4.
+    /// As `dot3_small`: each component a difference of two exact products (below 512 by the
+    /// precondition).
     #[inline(always)]
     fn cross3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
         let p = |i: usize, j: usize| mul_bits_small(a[i].to_bits(), b[j].to_bits());
@@ -785,6 +786,59 @@ mod tests {
             };
             assert_eq!(Fixed22::normalize3(v), want, "{v:?}");
             assert_eq!(Fixed22::unit3(v), want.map(|(u, _)| u), "{v:?}");
+        }
+    }
+
+    /// The small products hold to their whole precondition, factors below 16 (`2^26` raw):
+    /// every `a` on a stride against the edges and a stride of `b`, and the sealed
+    /// `dot3_small`/`cross3_small` on 200 000 random offsets of the polygon edge terms
+    /// (`ua`, `ub` within 8, `d` within 16: `polygon::edge::offset_products`) against
+    /// `Vec3::dot` and `Vec3::cross`, bit for bit.
+    #[test]
+    fn small_products_hold_for_factors_below_16() {
+        let lim = (1i32 << 26) - 1;
+        let edges = [
+            -lim,
+            -lim + 1,
+            -(1 << 25),
+            -1,
+            0,
+            1,
+            0xFFFF,
+            0x10000,
+            1 << 25,
+            lim,
+        ];
+        let mut a = -lim;
+        while a <= lim {
+            for &b in edges.iter().chain([a / 3, -a / 7, 12_345].iter()) {
+                assert_eq!(mul_bits_small(a, b), mul_bits(a, b), "{a} * {b}");
+                assert_eq!(mul_bits_small(b, a), mul_bits(b, a), "{b} * {a}");
+            }
+            a += 9_973;
+        }
+        let mut next = crate::test_rng::xorshift32(0x1234_5677);
+        // Raw values in [-2^(22 + k), 2^(22 + k)): below 2^k, of every magnitude.
+        let mut coord = |k: u32| {
+            let extra = next() % 20;
+            Fixed22::from_bits((next() as i32) >> (9 - k + extra))
+        };
+        for _ in 0..200_000 {
+            let ua = crate::Vec3::new(coord(3), coord(3), coord(3));
+            let ub = crate::Vec3::new(coord(3), coord(3), coord(3));
+            let d = crate::Vec3::new(coord(4), coord(4), coord(4));
+            let arr = |v: crate::Vec3<Fixed22>| [v.x, v.y, v.z];
+            let c = ua.cross(d);
+            assert_eq!(
+                <Fixed22 as super::super::sealed::Sealed>::cross3_small(arr(ua), arr(d)),
+                arr(c),
+                "{ua:?} x {d:?}"
+            );
+            assert_eq!(
+                <Fixed22 as super::super::sealed::Sealed>::dot3_small(arr(ua), arr(ub)),
+                ua.dot(ub),
+                "{ua:?} . {ub:?}"
+            );
         }
     }
 }

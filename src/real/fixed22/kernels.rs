@@ -34,13 +34,15 @@ pub(super) fn mul_bits(a: i32, b: i32) -> i32 {
     }
 }
 
-/// [`mul_bits`] for factors of at most 2 in magnitude (`|a|, |b| <= 2^23` raw): the same
-/// exact `floor(a b / 2^22)`, without the saturation test (the product is at most 4) and with
-/// the high halves small (`|ah|, |bh| <= 2^7`): `a b = ah bh 2^32 + (ah bl + al bh) 2^16 +
-/// al bl`, so `floor(a b / 2^22) = ah bh 2^10 + floor((ah bl + al bh + floor(al bl / 2^16)) /
-/// 2^6)`, every term within an `i32`. The normalizations' squares and scalings (their
-/// components rescaled to at most 2, the reciprocal length at most 2): about 12 instead of
-/// 27 instructions on the M0. Outside that range it wraps; callers keep to it.
+/// [`mul_bits`] for factors below 16 in magnitude (`|a|, |b| < 2^26` raw): the same exact
+/// `floor(a b / 2^22)`, without the saturation test (the product is below 256) and with the
+/// high halves small (`|ah|, |bh| <= 2^10`): `a b = ah bh 2^32 + (ah bl + al bh) 2^16 + al
+/// bl`, so `floor(a b / 2^22) = ah bh 2^10 + floor((ah bl + al bh + floor(al bl / 2^16)) /
+/// 2^6)`, every term within an `i32` (`|ah bl|, |al bh| < 2^26`, `|ah bh 2^10| <= 2^30`). The
+/// normalizations' squares and scalings (their components rescaled to at most 2, the
+/// reciprocal length at most 2), and the polygon edge terms' products of offsets (at most 8
+/// and 16): about 12 instead of 27 instructions on the M0. Outside that range it wraps;
+/// callers keep to it.
 #[inline(always)]
 pub(super) fn mul_bits_small(a: i32, b: i32) -> i32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
