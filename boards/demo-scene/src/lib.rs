@@ -448,15 +448,51 @@ impl<'a, T: Real> Demo<'a, T> {
     /// other's colours through a [`ColourExchange`] ([`Demo::export_colours`],
     /// [`Demo::import_colours`]): every visible vertex is shaded once per frame.
     pub fn shade_share(&mut self, frame: &Frame<T>, core: usize, cores: usize) -> u32 {
+        self.shade_share_polling(frame, core, cores, || {})
+    }
+
+    /// [`Demo::shade_share`], calling `poll` before each of this core's shader calls (one
+    /// every 20 000 to 40 000 cycles on the RP2040): a two-core firmware sends the frame's
+    /// empty bands from there while the display link would otherwise idle
+    /// ([`Demo::band_is_empty`]). The same colours.
+    pub fn shade_share_polling(
+        &mut self,
+        frame: &Frame<T>,
+        core: usize,
+        cores: usize,
+        poll: impl FnMut(),
+    ) -> u32 {
         let camera = &self.camera;
         let red = Lit::new(&frame.lights, &self.red);
         let teal = Lit::new(&frame.lights, &self.teal);
         let glow = Glow(frame.lamp_colour);
         let cores = cores.max(1);
-        let mine = |i: usize| i % cores == core;
+        // (`shade_some` takes a `Fn` filter: the poll behind a `RefCell`.)
+        let poll = core::cell::RefCell::new(poll);
+        let mine = |i: usize| {
+            let mine = i % cores == core;
+            if mine {
+                if let Ok(mut poll) = poll.try_borrow_mut() {
+                    (*poll)();
+                }
+            }
+            mine
+        };
         self.sphere.shade_some(camera, &red, &self.lit[0], mine)
             + self.torus.shade_some(camera, &teal, &self.lit[1], mine)
             + self.lamp.shade_some(camera, &glow, &self.emissive, mine)
+    }
+
+    /// Whether no object can reach the band of `rows` rows from frame row `y0` this frame
+    /// (after the transform: [`Demo::transform`], or on two cores [`Demo::transform_share`]
+    /// and [`Demo::import_screen`]): every object's screen rows miss it, so
+    /// [`Demo::draw_band`] draws nothing there and the band stays as cleared. (A band that
+    /// an object's rows reach may still come out empty: `false` then.)
+    pub fn band_is_empty(&self, y0: u16, rows: u16) -> bool {
+        let (r0, r1) = (i32::from(y0), i32::from(y0) + i32::from(rows));
+        [self.sphere.rows(), self.torus.rows(), self.lamp.rows()]
+            .iter()
+            .all(|&(top, bottom)| bottom <= r0 || top >= r1)
     }
 
     /// Writes this frame's vertex colours into `exchange` (after [`Demo::shade_share`]).

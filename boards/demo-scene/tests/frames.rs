@@ -112,6 +112,54 @@ fn bands_give_the_whole_frame_bit_for_bit() {
 }
 
 #[test]
+fn empty_bands_are_the_background_and_polling_shades_the_same() {
+    // The two-core RP2040 firmware sends the bands `band_is_empty` names as the background,
+    // without drawing them: drawn, they must be exactly that. Its core 1 shades through
+    // `shade_share_polling`: one poll per shader call, the same colours as `shade_share`.
+    let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
+    let mut demo = Demo::new(&mut buffers, Shading::Gouraud).unwrap();
+    let mut buffers2 = Box::new(MeshBuffers::<Fixed22>::new());
+    let mut polled = Demo::new(&mut buffers2, Shading::Gouraud).unwrap();
+    let (mut pixels, mut depth) = (vec![Rgb565(0); BAND_PIXELS], vec![0u16; BAND_PIXELS]);
+    let rows = (BAND_PIXELS / WIDTH as usize) as u16;
+    let (mut empty, mut drawn) = (0, 0);
+    for n in (0..PERIOD).step_by(5) {
+        let frame = demo.frame(n).unwrap();
+        let calls = demo.prepare(&frame);
+        polled.transform(&frame);
+        let mut polls = 0u32;
+        assert_eq!(
+            polled.shade_share_polling(&frame, 0, 1, || polls += 1),
+            calls
+        );
+        assert_eq!(polls, calls, "frame {n}");
+        for k in 0..HEIGHT / rows {
+            let mut draw = |d: &Demo<'_, Fixed22>| {
+                let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, k * rows).unwrap();
+                band.clear(BACKGROUND);
+                let mut stats = DrawStats::default();
+                d.draw_band(&frame, &mut band, &mut stats).unwrap();
+                (band.pixels().to_vec(), stats)
+            };
+            let (px, stats) = draw(&demo);
+            assert_eq!(draw(&polled).0, px, "frame {n}, band {k}: polled shading");
+            if demo.band_is_empty(k * rows, rows) {
+                empty += 1;
+                assert!(px.iter().all(|&p| p == BACKGROUND), "frame {n}, band {k}");
+                assert_eq!(stats.rasterized, 0, "frame {n}, band {k}");
+            } else {
+                drawn += 1;
+            }
+        }
+    }
+    // Both kinds occur (the test is not vacuous): the objects fill the middle bands only.
+    assert!(
+        empty >= 4 * 24 && drawn >= 6 * 24,
+        "{empty} empty, {drawn} drawn"
+    );
+}
+
+#[test]
 fn every_position_fits_fixed_point() {
     // Demo::frame builds the lights through constructors that refuse positions beyond
     // Fixed22::COORDINATE_LIMIT: every frame of the period must build.

@@ -52,6 +52,9 @@ where
     SPI: WriteTarget<TransmittedWord = u16>,
 {
     state: State<CH, SPI, N>,
+    /// The colour every word of the DMA buffer holds, if one does (after
+    /// [`BandSender::send_uniform`]; `None` after [`BandSender::send`]).
+    uniform: Option<u16>,
     dc: DC,
     cs: CS,
 }
@@ -68,6 +71,7 @@ where
     pub fn new(ch: CH, spi: SPI, buffer: &'static mut DmaBuffer<N>, dc: DC, cs: CS) -> Self {
         BandSender {
             state: State::Idle(ch, buffer, spi),
+            uniform: None,
             dc,
             cs,
         }
@@ -90,13 +94,55 @@ where
         (ch, buffer, spi)
     }
 
+    /// Whether the band in flight (if any) has left the DMA channel: then [`BandSender::send`]
+    /// and [`BandSender::send_uniform`] start at once (after the SPI's last few words).
+    pub fn is_idle(&self) -> bool {
+        match &self.state {
+            State::Idle(..) => true,
+            State::Sending(transfer) => transfer.is_done(),
+            State::Moving => false,
+        }
+    }
+
     /// Sends `band` (all of its rows, [`WIDTH`] wide) to the display rows `band.y0()..`:
     /// waits for the previous band to finish, sends the address window, copies the pixels
     /// into the DMA buffer and starts the transfer, which goes on after this returns.
     pub fn send(&mut self, band: &Band<'_, Rgb565>) -> Result<(), DC::Error> {
+        let pixels = band.pixels();
+        self.uniform = None;
+        self.send_with(band.y0(), band.rows(), |buffer| {
+            for (word, p) in buffer.iter_mut().zip(pixels) {
+                *word = p.0;
+            }
+        })
+    }
+
+    /// Sends a band of `rows` rows from display row `y0` all of one `colour` (an empty band:
+    /// the background), as [`BandSender::send`] does a drawn one, but with no band to draw or
+    /// copy: the DMA buffer is filled with `colour`, unless the last band sent was this
+    /// colour too (then it holds it already: only the address window is sent).
+    pub fn send_uniform(&mut self, y0: u16, rows: u16, colour: Rgb565) -> Result<(), DC::Error> {
+        let refill = self.uniform != Some(colour.0);
+        let result = self.send_with(y0, rows, |buffer| {
+            if refill {
+                buffer.fill(colour.0);
+            }
+        });
+        // (On an error nothing was written: the buffer's content is not known.)
+        self.uniform = result.is_ok().then_some(colour.0);
+        result
+    }
+
+    /// [`BandSender::send`] of the band of `rows` rows from `y0` whose pixels `fill` writes
+    /// into the DMA buffer.
+    fn send_with(
+        &mut self,
+        y0: u16,
+        rows: u16,
+        fill: impl FnOnce(&mut DmaBuffer<N>),
+    ) -> Result<(), DC::Error> {
         let (ch, buffer, mut spi) = self.finish();
-        let y0 = band.y0();
-        let y1 = y0 + band.rows() - 1;
+        let y1 = y0 + rows - 1;
         let command = |spi: &mut SPI, cmd: u16, params: &[u16], dc: &mut DC| {
             dc.set_low()?;
             let _ = spi.write(&[cmd]);
@@ -114,10 +160,7 @@ where
             self.state = State::Idle(ch, buffer, spi);
             return Err(e);
         }
-        let pixels = band.pixels();
-        for (word, p) in buffer.iter_mut().zip(pixels) {
-            *word = p.0;
-        }
+        fill(buffer);
         // A band shorter than the buffer (the last one, if the height were not a multiple
         // of the band's rows) sends only its own pixels: there is none here (240 = 15 x 16).
         self.state = State::Sending(single_buffer::Config::new(ch, buffer, spi).start());
