@@ -116,7 +116,7 @@ pub(crate) mod sealed {
         /// default compares the largest magnitude; [`Fixed22`](super::Fixed22) tests each
         /// component's raw bits against `(-r, r)` with one unsigned comparison (a saturated
         /// component counts as far).
-        #[cfg(feature = "polygon")]
+        #[cfg(any(feature = "polygon", feature = "raster"))]
         #[inline(always)]
         fn all_within(v: [Self; 3], r: Self) -> bool
         where

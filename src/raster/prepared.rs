@@ -320,11 +320,20 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         let (mut top, mut bottom) = (i32::MAX, i32::MIN);
         let mut clipped = false;
         self.out_of_range = false;
+        // Fixed point, a small transform (every demo object's): the products without
+        // saturation tests where the vertex's bounds allow (the same bits).
+        let small = T::RESOLUTION > T::ZERO && transform.is_small();
+        let (eight, two) = (T::from_u32(8), T::TWO);
+        let arr = |v: Vec3<T>| [v.x, v.y, v.z];
         for (i, (v, src)) in self.verts.iter_mut().zip(self.mesh.vertices()).enumerate() {
             if !mine(i) {
                 continue;
             }
-            let p = transform.point(src.position);
+            let p = if small && T::all_within(arr(src.position), eight) {
+                transform.point_small(src.position)
+            } else {
+                transform.point(src.position)
+            };
             // Folds away for the float types (no limit).
             let beyond = T::COORDINATE_LIMIT < f64::MAX && p.check_position("vertex").is_err();
             self.out_of_range |= beyond && p.is_finite();
@@ -338,12 +347,18 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 continue;
             }
             let zero = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
-            let n = if normals {
-                transform.normal(src.normal).normalize().unwrap_or(zero)
-            } else {
+            let n = if !normals {
                 zero
+            } else if small && T::all_within(arr(src.normal), two) {
+                transform
+                    .normal_small(src.normal)
+                    .normalize()
+                    .unwrap_or(zero)
+            } else {
+                transform.normal(src.normal).normalize().unwrap_or(zero)
             };
-            let c = camera.clip(p);
+            // (`p` is within the coordinate limit: checked above.)
+            let c = camera.clip_within(p);
             let d = plane_distances(&c, near, far);
             let mut outside = 0u8;
             for (k, dk) in d.iter().enumerate() {

@@ -456,7 +456,7 @@ impl Real for Fixed22 {
 impl super::sealed::Sealed for Fixed22 {
     /// `-r < c < r` for each component as `(c + r) as u32 < 2r - 1` (wrapping: a component
     /// at `i32::MIN` or `MAX` falls outside for any `r` below 256; `r <= 0`: `false`).
-    #[cfg(feature = "polygon")]
+    #[cfg(any(feature = "polygon", feature = "raster"))]
     #[inline(always)]
     fn all_within(v: [Self; 3], r: Self) -> bool {
         let r = r.to_bits();

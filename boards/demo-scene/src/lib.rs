@@ -448,7 +448,8 @@ impl<'a, T: Real> Demo<'a, T> {
     /// other's colours through a [`ColourExchange`] ([`Demo::export_colours`],
     /// [`Demo::import_colours`]): every visible vertex is shaded once per frame.
     pub fn shade_share(&mut self, frame: &Frame<T>, core: usize, cores: usize) -> u32 {
-        self.shade_share_polling(frame, core, cores, || {})
+        let cores = cores.max(1);
+        self.shade_where(frame, |i| i % cores == core)
     }
 
     /// [`Demo::shade_share`], calling `poll` before each of this core's shader calls (one
@@ -462,14 +463,10 @@ impl<'a, T: Real> Demo<'a, T> {
         cores: usize,
         poll: impl FnMut(),
     ) -> u32 {
-        let camera = &self.camera;
-        let red = Lit::new(&frame.lights, &self.red);
-        let teal = Lit::new(&frame.lights, &self.teal);
-        let glow = Glow(frame.lamp_colour);
         let cores = cores.max(1);
         // (`shade_some` takes a `Fn` filter: the poll behind a `RefCell`.)
         let poll = core::cell::RefCell::new(poll);
-        let mine = |i: usize| {
+        self.shade_where(frame, |i| {
             let mine = i % cores == core;
             if mine {
                 if let Ok(mut poll) = poll.try_borrow_mut() {
@@ -477,7 +474,15 @@ impl<'a, T: Real> Demo<'a, T> {
                 }
             }
             mine
-        };
+        })
+    }
+
+    /// The shading of the visible vertices whose index `mine` accepts, every object's.
+    fn shade_where(&mut self, frame: &Frame<T>, mine: impl Fn(usize) -> bool + Copy) -> u32 {
+        let camera = &self.camera;
+        let red = Lit::new(&frame.lights, &self.red);
+        let teal = Lit::new(&frame.lights, &self.teal);
+        let glow = Glow(frame.lamp_colour);
         self.sphere.shade_some(camera, &red, &self.lit[0], mine)
             + self.torus.shade_some(camera, &teal, &self.lit[1], mine)
             + self.lamp.shade_some(camera, &glow, &self.emissive, mine)

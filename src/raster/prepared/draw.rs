@@ -129,8 +129,9 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
     {
         let camera = ctx.camera;
         let cv = v.map(|v| ClipVert {
-            // The clip coordinates again (rare: only clipped triangles need them).
-            c: camera.clip(v.p),
+            // The clip coordinates again (rare: only clipped triangles need them; `p` within
+            // the coordinate limit, as `transform` checked it or left the origin).
+            c: camera.clip_within(v.p),
             p: v.p,
             n: v.n,
             col: Rgb::new(
