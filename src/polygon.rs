@@ -360,10 +360,16 @@ impl<T: Real> ClippedEdge<T> {
     /// normalized directions is mostly rounding.
     /// An arc whose products leave the normal range ([`products_in_range`]) is first scaled
     /// by a power of two (cold path).
+    ///
+    /// `k` is a unit vector and the edge's points within the coordinate limit's offsets (every
+    /// caller's: [`edge::offset_products`]): `G = ua x d` then has components of at most 256
+    /// and `G.k` at most `|G|`, so fixed point forms them without saturation tests (the same
+    /// bits as `Vec3::cross` and `Vec3::dot`).
     #[inline]
     pub(crate) fn horizon_angle(&self, k: Vec3<T>) -> T {
-        let mut y = self.ua.cross(self.d).dot(k);
-        let mut x = self.ua.dot(self.ub);
+        let (g, x) = edge::offset_products(self.ua, self.ub, self.d);
+        let mut x = x;
+        let mut y = T::mul_unit(g.x, k.x) + T::mul_unit(g.y, k.y) + T::mul_unit(g.z, k.z);
         let m = y.abs().max(x.abs());
         if !products_in_range(m, m) {
             let Some((g, dot)) = rescaled_products(self.ua, self.ub, self.d) else {
