@@ -757,21 +757,39 @@ mod tests {
         recip_core_within(1);
     }
 
-    /// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
-    /// `|a|, |b| <= 2^23` on a stride plus the edges, and the normalizations of 200 000 random
-    /// vectors of every magnitude against the same formula in the type's own `*` and `+`.
-    #[test]
-    fn small_products_and_normalizations_are_bit_identical() {
-        let lim = 1i32 << 23;
-        let edges = [-lim, -lim + 1, -1, 0, 1, 0xFFFF, 0x10000, lim - 1, lim];
+    /// `mul_bits_small` against `mul_bits` (both orders): every `a` in `[-lim, lim]` on a
+    /// stride of `step`, against the range's edges, the halves' edges and `a`'s fractions.
+    fn small_products_on_a_stride(lim: i32, step: i32) {
+        let half = lim / 2 + 1;
+        let edges = [
+            -lim,
+            -lim + 1,
+            -half,
+            -1,
+            0,
+            1,
+            0xFFFF,
+            0x10000,
+            half,
+            lim - 1,
+            lim,
+        ];
         let mut a = -lim;
         while a <= lim {
             for &b in edges.iter().chain([a / 3, -a / 7, 12_345].iter()) {
                 assert_eq!(mul_bits_small(a, b), mul_bits(a, b), "{a} * {b}");
                 assert_eq!(mul_bits_small(b, a), mul_bits(b, a), "{b} * {a}");
             }
-            a += 997;
+            a += step;
         }
+    }
+
+    /// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
+    /// `|a|, |b| <= 2^23` on a stride plus the edges, and the normalizations of 200 000 random
+    /// vectors of every magnitude against the same formula in the type's own `*` and `+`.
+    #[test]
+    fn small_products_and_normalizations_are_bit_identical() {
+        small_products_on_a_stride(1 << 23, 997);
         let mut next = crate::test_rng::xorshift32(0x2545_F491);
         for _ in 0..200_000 {
             let shift = next() % 31;
@@ -796,27 +814,7 @@ mod tests {
     /// `Vec3::dot` and `Vec3::cross`, bit for bit.
     #[test]
     fn small_products_hold_for_factors_below_16() {
-        let lim = (1i32 << 26) - 1;
-        let edges = [
-            -lim,
-            -lim + 1,
-            -(1 << 25),
-            -1,
-            0,
-            1,
-            0xFFFF,
-            0x10000,
-            1 << 25,
-            lim,
-        ];
-        let mut a = -lim;
-        while a <= lim {
-            for &b in edges.iter().chain([a / 3, -a / 7, 12_345].iter()) {
-                assert_eq!(mul_bits_small(a, b), mul_bits(a, b), "{a} * {b}");
-                assert_eq!(mul_bits_small(b, a), mul_bits(b, a), "{b} * {a}");
-            }
-            a += 9_973;
-        }
+        small_products_on_a_stride((1 << 26) - 1, 9_973);
         let mut next = crate::test_rng::xorshift32(0x1234_5677);
         // Raw values in [-2^(22 + k), 2^(22 + k)): below 2^k, of every magnitude.
         let mut coord = |k: u32| {
