@@ -569,7 +569,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// first tries to prove the term below `2^-24` and answers 0 at once
     /// (`polygon/negligible.rs`: a quick rejection of 200 to 680 instructions on the M0, about
     /// 3 000 for the whole test). Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 13 898 instructions (median of the budget's 16 cases; 14 790 with the offsets'
+    /// 13 700 instructions (median of the budget's 16 cases; 14 790 with the offsets'
     /// products saturating, `polygon::edge::offset_products`; 14 320 before the test, 20 419
     /// with the recurrence in the type's own arithmetic and the unit vectors' products
     /// saturating). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond

@@ -318,11 +318,12 @@ const TRANSFORM_EXCHANGE: f64 = 0.751 / (1.167 / 2.0);
 ///
 /// With two cores (`rp2040-dual`) each core transforms and shades half the Gouraud vertices
 /// and draws half the bands, so shade and raster are halved, and transform too, times
-/// [`TRANSFORM_EXCHANGE`] for handing the screen data over; and the flush is the single core's flush per byte, twice: core 0 sends its
-/// bands and waits for the SPI, busy with core 1's (measured on the demo's dual-core frame 0,
-/// bands drawn top to bottom as no earlier frame has counted them: sending 0.65 M and waiting
-/// 1.65 M cycles, against 0.56 M for the single core's flush; when core 0 sent every band:
-/// 1.01 M against 0.51 M).
+/// [`TRANSFORM_EXCHANGE`] for handing the screen data over; and core 0's flush (sending its
+/// bands, waiting for its turn at the SPI and for the last band) is the single core's flush
+/// per byte: measured on the demo's dual-core frames, 0.17 M in frame 0 and 0.47 M in frame 1
+/// against 0.49 M for the single core's flush, now that core 1 sends the empty bands while it
+/// shades (it was twice the single core's before: sending 0.65 M and waiting 1.65 M cycles in
+/// frame 0, against 0.56 M).
 ///
 /// # Errors
 /// A missing cost.
@@ -360,11 +361,8 @@ pub fn predict(
             + o.pixel_calls as f64 * pp
             + calls_cost(costs, b, lights, *f, o.pixel_calls, &o.pixel_lights)?;
     }
-    let mut flush = work.bytes as f64 * costs.need(b, "flush_byte")?;
+    let flush = work.bytes as f64 * costs.need(b, "flush_byte")?;
     let cores = f64::from(chip.cores.max(1));
-    if chip.cores > 1 {
-        flush *= cores;
-    }
     let transform = if chip.cores > 1 {
         transform / cores * TRANSFORM_EXCHANGE
     } else {
