@@ -367,8 +367,7 @@ impl<T: Real> ClippedEdge<T> {
     /// bits as `Vec3::cross` and `Vec3::dot`).
     #[inline]
     pub(crate) fn horizon_angle(&self, k: Vec3<T>) -> T {
-        let (g, x) = edge::offset_products(self.ua, self.ub, self.d);
-        let mut x = x;
+        let (g, mut x) = edge::offset_products(self.ua, self.ub, self.d);
         let mut y = T::mul_unit(g.x, k.x) + T::mul_unit(g.y, k.y) + T::mul_unit(g.z, k.z);
         let m = y.abs().max(x.abs());
         if !products_in_range(m, m) {

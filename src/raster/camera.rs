@@ -151,19 +151,24 @@ impl<T: Real> Affine<T> {
     /// saturation tests (about 90 fewer Cortex-M0 instructions).
     #[inline]
     pub(super) fn point_small(&self, p: Vec3<T>) -> Vec3<T> {
-        let a = [p.x, p.y, p.z];
-        let row = |r: Vec3<T>| T::dot3_small([r.x, r.y, r.z], a);
-        Vec3::new(row(self.m[0]), row(self.m[1]), row(self.m[2])) + self.t
+        rows_times_small(&self.m, p) + self.t
     }
 
     /// [`Affine::normal`] for a small transform and `n` with coordinates below 2: the same
     /// bits, as [`Affine::point_small`].
     #[inline]
     pub(super) fn normal_small(&self, n: Vec3<T>) -> Vec3<T> {
-        let a = [n.x, n.y, n.z];
-        let row = |r: Vec3<T>| T::dot3_small([r.x, r.y, r.z], a);
-        Vec3::new(row(self.nm[0]), row(self.nm[1]), row(self.nm[2]))
+        rows_times_small(&self.nm, n)
     }
+}
+
+/// The matrix of rows `rows` times `v`, each row's dot product the sealed `dot3_small` (its
+/// bounds are the callers': [`Affine::point_small`], [`Affine::normal_small`]).
+#[inline(always)]
+fn rows_times_small<T: Real>(rows: &[Vec3<T>; 3], v: Vec3<T>) -> Vec3<T> {
+    let a = [v.x, v.y, v.z];
+    let row = |r: Vec3<T>| T::dot3_small([r.x, r.y, r.z], a);
+    Vec3::new(row(rows[0]), row(rows[1]), row(rows[2]))
 }
 
 /// `width / height` from both sides scaled by `2^-12` (at most 1 for sides up to
@@ -385,7 +390,7 @@ impl<T: Real> Camera<T> {
     /// range test of `p`).
     pub fn project(&self, p: Vec3<T>) -> Option<(T, T)> {
         p.check_position("p").ok()?;
-        let c = self.clip(p);
+        let c = self.clip_within(p);
         if !(c[2] >= self.near) {
             return None;
         }
