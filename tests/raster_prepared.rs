@@ -81,13 +81,14 @@ fn encoding_table_is_within_a_level_of_the_transfer_function() {
         (Encoding::Gamma2, 1, 3),
         (Encoding::Srgb, 1, 1),
     ] {
-        let table = EncodeTable::new::<f64>(enc);
+        let table565 = EncodeTable::<Rgb565>::new::<f64>(enc);
+        let table = EncodeTable::<Rgb888>::new::<f64>(enc);
         let mut worst = [0i32; 2];
         for i in 0..(ENCODE_ENTRIES as i32 - 1) * 16 {
             let x = f64::from(i) / (4096.0 * 16.0);
             let idx = (x * 4096.0).round() as i32;
             let c = Rgb::splat(x);
-            let a: Rgb565 = table.pixel(idx, idx, idx);
+            let a: Rgb565 = table565.pixel(idx, idx, idx);
             let b: Rgb565 = encode_pixel(c, 1.0, enc);
             let d565 = (i32::from(a.0 >> 5 & 63) - i32::from(b.0 >> 5 & 63)).abs();
             let a: Rgb888 = table.pixel(idx, idx, idx);
@@ -127,6 +128,21 @@ fn levels_round_exactly_into_every_pixel_format() {
         assert_eq!(
             Rgb888::from_levels(level, level, level).0[1] as u16,
             q(255.0),
+            "{level}"
+        );
+        // A table's entries make the same pixels as the levels, each channel from its own
+        // entry (RGB565's entries are packed: every channel's bits of the level).
+        let (g, b) = (level ^ 0x5A5A, u16::MAX - level.rotate_left(3));
+        let e = <Rgb565 as PixelFormat>::table_entry;
+        assert_eq!(
+            Rgb565::from_entries(e(level), e(g), e(b)),
+            Rgb565::from_levels(level, g, b),
+            "{level}"
+        );
+        let e = <Rgb888 as PixelFormat>::table_entry;
+        assert_eq!(
+            Rgb888::from_entries(e(level), e(g), e(b)),
+            Rgb888::from_levels(level, g, b),
             "{level}"
         );
     }

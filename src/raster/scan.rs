@@ -53,11 +53,11 @@ impl<T: Real> ScreenVertex<T> {
 }
 
 /// The draw call's fixed inputs.
-pub(super) struct Context<'a, T, S: ?Sized> {
+pub(super) struct Context<'a, T, S: ?Sized, P: PixelFormat> {
     pub(super) camera: &'a Camera<T>,
     pub(super) shader: &'a S,
     pub(super) opts: &'a DrawOptions<T>,
-    pub(super) table: &'a EncodeTable,
+    pub(super) table: &'a EncodeTable<P>,
     pub(super) row0: i32,
     pub(super) row1: i32,
 }
@@ -263,7 +263,7 @@ fn recip62(d: u32) -> u32 {
 
 /// Scan-converts one triangle into the band (see the [`prepared`](super::prepared) module docs).
 pub(super) fn raster<T, P, S>(
-    ctx: &Context<'_, T, S>,
+    ctx: &Context<'_, T, S, P>,
     band: &mut Band<'_, P>,
     v: &[ScreenVertex<T>; 3],
     stats: &mut DrawStats,

@@ -31,7 +31,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
         band: &mut Band<'_, P>,
         shader: &S,
         opts: &DrawOptions<T>,
-        table: &EncodeTable,
+        table: &EncodeTable<P>,
     ) -> Result<DrawStats, RasterError>
     where
         P: PixelFormat,
@@ -85,7 +85,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
     #[inline(always)]
     fn draw_triangle<P, S>(
         &self,
-        ctx: &Context<'_, T, S>,
+        ctx: &Context<'_, T, S, P>,
         band: &mut Band<'_, P>,
         tri: &[u16; 3],
         sy: Option<(i32, i32)>,
@@ -119,7 +119,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
     /// drawn by the same integer loop.
     fn draw_clipped<P, S>(
         &self,
-        ctx: &Context<'_, T, S>,
+        ctx: &Context<'_, T, S, P>,
         band: &mut Band<'_, P>,
         v: [&PreparedVertex<T>; 3],
         stats: &mut DrawStats,
