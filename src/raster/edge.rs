@@ -291,7 +291,7 @@ impl EdgeTriangle {
         &self,
         (x0, y0, x1, y1): (i32, i32, i32, i32),
         start: [i64; 3],
-        mut f: F,
+        f: F,
     ) {
         let v = self.v;
         let zero = E::from_i64(0);
@@ -325,24 +325,15 @@ impl EdgeTriangle {
             }
             *n += 1;
         }
-        let [mut l0, mut l1] = left;
-        let [mut r0, mut r1] = right;
-        for y in y0..=y1 {
-            if y > y0 {
-                l0.value = l0.value + l0.row;
-                l1.value = l1.value + l1.row;
-                r0.value = r0.value + r0.row;
-                r1.value = r1.value + r1.row;
-            }
-            l0.settle_left(x0, x1);
-            l1.settle_left(x0, x1);
-            r0.settle_right(x0, x1);
-            r1.settle_right(x0, x1);
-            let first = l0.x.max(l1.x);
-            let last = r0.x.min(r1.x);
-            if first <= last {
-                f(y, first, last);
-            }
+        // (A triangle of positive area has one or two of each: two loops, each with its three
+        // edges, not one with a fourth that is never met.)
+        let [l0, l1] = left;
+        let [r0, r1] = right;
+        let boxed = (x0, y0, x1, y1);
+        if nl >= 2 {
+            scan_rows::<E, F, true>(boxed, [l0, l1, r0], f);
+        } else {
+            scan_rows::<E, F, false>(boxed, [l0, r0, r1], f);
         }
     }
 
@@ -381,6 +372,38 @@ impl EdgeTriangle {
                 e[1] += step[1];
                 e[2] += step[2];
             }
+        }
+    }
+}
+
+/// The rows of [`EdgeTriangle::scan`] with its three edges `[a, b, c]`: `a` a left edge, `c` a
+/// right one, `b` a left edge if `TWO_LEFT`, else a right one.
+#[inline(always)]
+fn scan_rows<E: EdgeInt, F: FnMut(i32, i32, i32), const TWO_LEFT: bool>(
+    (x0, y0, x1, y1): (i32, i32, i32, i32),
+    [mut a, mut b, mut c]: [Bound<E>; 3],
+    mut f: F,
+) {
+    for y in y0..=y1 {
+        if y > y0 {
+            a.value = a.value + a.row;
+            b.value = b.value + b.row;
+            c.value = c.value + c.row;
+        }
+        a.settle_left(x0, x1);
+        if TWO_LEFT {
+            b.settle_left(x0, x1);
+        } else {
+            b.settle_right(x0, x1);
+        }
+        c.settle_right(x0, x1);
+        let (first, last) = if TWO_LEFT {
+            (a.x.max(b.x), c.x)
+        } else {
+            (a.x, b.x.min(c.x))
+        };
+        if first <= last {
+            f(y, first, last);
         }
     }
 }
