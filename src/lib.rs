@@ -4,8 +4,8 @@
 //! of Snyder's "Area Light Sources for Real-Time Graphics" (MSR-TR-96-11), the SH9
 //! irradiance of Ramamoorthi and Hanrahan, Barzel's uberlight shaping, Picott's linear lights
 //! and Arvo's irradiance-tensor moments, written once over a scalar trait ([`Real`]) and
-//! instantiated for `f64` (the reference), `f32` (via `libm`), [`Fast32`] (f32 with cheap
-//! `sqrt`/`atan2`) and, for chips without an FPU, the fixed-point `Fixed22` (I10F22, feature
+//! instantiated for `f64` (the reference), `f32` (via `libm`), [`Fast32`] (f32 with a cheap
+//! `atan2`) and, for chips without an FPU, the fixed-point `Fixed22` (I10F22, feature
 //! `fixed`; see `real::Fixed22`).
 //!
 //! `#![no_std]`, no allocation, no panics, no `unsafe` but the audited hardware square root of

@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | `f64` | the reference | `libm` (correctly rounded sqrt, atan2 within 1 ULP) |
 //! | `f32` | the firmware float path | `libm` (`sinf`, ...); `sqrt` is `VSQRT.F32` on FPU targets (`eabihf`), `libm::sqrtf` elsewhere: see [`hw`]; `atan2` is the crate's degree-17 polynomial (1.65 ULP, 63 against libm's 68 to 97 M4F instructions a call) except on soft-float targets, which keep `libm::atan2f` (`src/real/f32_math.rs`); `arc_ratio` (`theta/sin(theta)` for the polygon edge terms) a degree-9 polynomial on the same targets (`src/real/arc_ratio.rs`) |
-//! | [`Fast32`] | f32 with the crate's own cheap approximations | see [`fast32`] |
+//! | [`Fast32`] | f32 with the crate's own cheap arctangent | see [`fast32`] |
 //!
 //! The trait is sealed: the crate's models rely on the error bounds of each backend, which are
 //! stated and tested here, so only this crate implements it. The fixed-point types of the

@@ -1,13 +1,15 @@
-//! `Fast32`: f32 with the crate's own cheap square root and arctangent.
+//! `Fast32`: f32 with the crate's own cheap arctangent (and f32's square root).
 //!
 //! The per-sample work of every model is a handful of square roots (normalizing directions) and
-//! arctangents (edge angles, cap boundaries). The approximations here replace `sqrtf`/`atan2f`
-//! by a few dozen float operations and keep every model within 1/1024 of the f64 reference
-//! (asserted in `tests/`). Measured (the QEMU budget, median instructions per call over the
-//! models): now that `f32` has the Cortex-M4F's `VSQRT.F32` and a reduced arctangent of its
-//! own, `Fast32` is no cheaper than `f32`: 0.95 to 1.41 times its count on the Cortex-M4F,
-//! 0.99 to 1.22 times on the Cortex-M0 (soft float; `hemi_const` 2416 against 2416). Use `f32`,
-//! or [`crate::Fixed22`] on chips without an FPU.
+//! arctangents (edge angles, cap boundaries). [`fast_atan2`] replaces `atan2f` by a few dozen
+//! float operations and keeps every model within 1/1024 of the f64 reference (asserted in
+//! `tests/`). The square root is f32's: `VSQRT.F32` on the Cortex-M4F and `libm::sqrtf`
+//! elsewhere, correctly rounded, and cheaper than this module's [`fast_sqrt`] on both kinds of
+//! target (measured, the QEMU budget, median instructions per call: `polygon_lambert` 914 -> 692
+//! on the Cortex-M4F and 32 149 -> 28 448 on the Cortex-M0 when `Fast32` took f32's; no model
+//! dearer on either). [`fast_sqrt`] and [`fast_rsqrt`] remain as standalone approximations.
+//! `Fast32` is no cheaper than `f32` now that `f32` has the Cortex-M4F's `VSQRT.F32` and a
+//! reduced arctangent of its own; use `f32`, or [`crate::Fixed22`] on chips without an FPU.
 //!
 //! Why not micromath: its `atan2` is off by up to 2.8e-3 rad and its `sqrt` by several
 //! percent (measured in this module's tests), which puts a four-edge polygon light past the
@@ -199,9 +201,11 @@ impl Real for Fast32 {
     fn abs(self) -> Self {
         Fast32(<f32 as Real>::abs(self.0))
     }
+    /// f32's square root (`VSQRT.F32` on the Cortex-M4F, `libm::sqrtf` elsewhere): correctly
+    /// rounded, and cheaper than [`fast_sqrt`] on both kinds of target (see the module docs).
     #[inline(always)]
     fn sqrt(self) -> Self {
-        Fast32(fast_sqrt(self.0))
+        Fast32(<f32 as Real>::sqrt(self.0))
     }
     #[inline(always)]
     fn atan2(self, x: Self) -> Self {
