@@ -76,7 +76,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-hemi_cos: target/accuracy/model-hemi_cos.md -->
     /// Measured: f64 within 6.7e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.5e-7, Fast32 3.5e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.5e-7, Fast32 2.5e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_cos -->
     #[inline]
     pub fn lambert_cos(&self, n: impl Direction<T>) -> T {
@@ -133,7 +133,7 @@ impl<T: Real> OvercastSky<T> {
     ///
     /// <!-- BEGIN acc-sky_overcast: target/accuracy/model-sky_overcast.md -->
     /// Measured: f64 within 1.1e-15 of its reference (the independent quadrature); against f64,
-    /// f32 1.7e-7, Fast32 2.9e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.7e-7, Fast32 1.7e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_overcast -->
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {

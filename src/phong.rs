@@ -90,8 +90,8 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-phong_hemi_const: target/accuracy/model-phong_hemi_const.md -->
     /// Measured: f64 within 1.1e-13 of its reference (the independent quadrature); against f64,
-    /// f32 2.0e-6 at m = 255 (ill-conditioned: 1.0e-6 at m = 255), Fast32 1.2e-4 at m = 255
-    /// (ill-conditioned: 1.1e-4 at m = 255), Fixed22 9.9e-5 at m = 0; 88 657 cases in all
+    /// f32 2.0e-6 at m = 255 (ill-conditioned: 1.0e-6 at m = 255), Fast32 4.2e-6 at m = 64
+    /// (ill-conditioned: 2.0e-6 at m = 64), Fixed22 9.9e-5 at m = 0; 88 657 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_hemi_const -->
     #[inline]
@@ -120,7 +120,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-phong_hemi_cos: target/accuracy/model-phong_hemi_cos.md -->
     /// Measured: f64 within 5.5e-14 of its reference (the independent quadrature); against f64,
-    /// f32 4.9e-7 at m = 255, Fast32 2.8e-5 at m = 255, Fixed22 7.7e-6 at m = 255; 88 657 cases
+    /// f32 4.9e-7 at m = 255, Fast32 3.7e-6 at m = 255, Fixed22 7.7e-6 at m = 255; 88 657 cases
     /// in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_hemi_cos -->
     #[inline]
@@ -297,7 +297,7 @@ impl<T: Real> CapLight<T> {
     /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
     /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,
     /// f32 2.0e-6 at m = 255 (high m: 2.2e-6 at m = 255; ill-conditioned: 2.5e-6 at m = 255),
-    /// Fast32 1.2e-4 at m = 255 (ill-conditioned: 1.1e-4 at m = 255), Fixed22 1.6e-4 at m = 0;
+    /// Fast32 7.8e-6 at m = 255 (ill-conditioned: 6.8e-6 at m = 255), Fixed22 1.6e-4 at m = 0;
     /// 200 854 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-phong_cap -->
     #[inline]
@@ -336,8 +336,8 @@ impl<T: Real> SphereLight<T> {
     ///
     /// <!-- BEGIN acc-phong_sphere: target/accuracy/model-phong_sphere.md -->
     /// Measured: f64 within 7.9e-14 of its reference (the independent quadrature); against f64,
-    /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.6e-5 at m = 255
-    /// (ill-conditioned: 1.2e-4 at m = 255), Fixed22 1.0e-4 at m = 255; 62 580 cases in all
+    /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.6e-6 at m = 255
+    /// (ill-conditioned: 8.2e-6 at m = 255), Fixed22 1.0e-4 at m = 255; 62 580 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_sphere -->
     #[inline]

@@ -530,7 +530,7 @@ impl<T: Real> LineLight<T> {
     /// <!-- BEGIN acc-line_lambert: target/accuracy/model-line_lambert.md -->
     /// Measured: f64 within 3.9e-10 of its reference (close, horizon near the foot); against f64,
     /// f32 2.9e-7 (capped: 8.1e-7; ill-conditioned: 4.6e-5; near boundary: 1.2e-3; unresolved:
-    /// 3.0e-1), Fast32 1.8e-5 (capped: 1.4e-4; ill-conditioned: 7.6e-5; near boundary: 1.3e-3;
+    /// 3.0e-1), Fast32 1.8e-5 (capped: 1.4e-4; ill-conditioned: 4.6e-5; near boundary: 1.0e-3;
     /// unresolved: 3.0e-1); 7 424 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-line_lambert -->
     #[inline]

@@ -43,8 +43,8 @@ impl<T: Real> LineLight<T> {
     /// <!-- BEGIN acc-line_phong_peak: target/accuracy/model-line_phong_peak.md -->
     /// Measured: f64 within 4.7e-9 of its reference (brute force, h = 1e-9 rotated); against f64,
     /// f32 3.5e-7 (capped: 2.3e-3; ill-conditioned: 1.7e-6; near boundary: 2.6e-5; unresolved:
-    /// 6.6e-1), Fast32 3.6e-6 (capped: 2.7e-3; ill-conditioned: 3.4e-6; near boundary: 2.6e-5;
-    /// unresolved: 6.6e-1); 10 053 cases in all (`docs/accuracy.md`).
+    /// 6.6e-1), Fast32 3.5e-7 (capped: 2.3e-3; ill-conditioned: 1.7e-6; near boundary: 2.6e-5;
+    /// unresolved: 6.6e-1); 10 047 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-line_phong_peak -->
     #[inline]
     pub fn phong_peak(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
@@ -273,8 +273,8 @@ impl<T: Real> ParallelogramLight<T> {
     ///
     /// <!-- BEGIN acc-rect_phong_peak: target/accuracy/model-rect_phong_peak.md -->
     /// Measured: f64 within 7.0e-10 of its reference (brute force, m = 2^16, 2^20); against f64,
-    /// f32 2.9e-7 (ill-conditioned: 4.7e-6; near boundary: 4.5e-7), Fast32 3.8e-6
-    /// (ill-conditioned: 4.3e-6; near boundary: 6.4e-7), Fixed22 9.4e-5 at m = 255; 11 294 cases
+    /// f32 2.9e-7 (ill-conditioned: 4.7e-6; near boundary: 4.5e-7), Fast32 2.9e-7
+    /// (ill-conditioned: 4.7e-6; near boundary: 4.5e-7), Fixed22 9.4e-5 at m = 255; 11 294 cases
     /// in all (`docs/accuracy.md`).
     /// <!-- END acc-rect_phong_peak -->
     #[inline]

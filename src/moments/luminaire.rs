@@ -42,7 +42,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// <!-- BEGIN acc-directional_luminaire: target/accuracy/model-directional_luminaire.md -->
     /// Measured: f64 within 4.2e-12 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 5.8e-7 (ill-conditioned: 1.7e-7; near boundary: 5.1e-5), Fast32 2.7e-5
-    /// (ill-conditioned: 8.9e-6); 18 881 cases in all (`docs/accuracy.md`).
+    /// (ill-conditioned: 8.9e-6); 18 870 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-directional_luminaire -->
     #[inline]
     pub fn directional_luminaire(
@@ -89,7 +89,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// <!-- BEGIN acc-glossy_reflection: target/accuracy/model-glossy_reflection.md -->
     /// Measured: f64 within 1.9e-12 of its reference (the independent quadrature, h <= 1e-8);
     /// against f64, f32 5.1e-7 (ill-conditioned: 3.7e-7; near boundary: 6.4e-5), Fast32 1.4e-5
-    /// (ill-conditioned: 6.1e-6); 18 886 cases in all (`docs/accuracy.md`).
+    /// (ill-conditioned: 7.2e-6); 18 887 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-glossy_reflection -->
     #[inline]
     pub fn glossy_reflection(
@@ -131,7 +131,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// <!-- BEGIN acc-glossy_transmission: target/accuracy/model-glossy_transmission.md -->
     /// Measured: f64 within 1.9e-12 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 2.4e-7 (ill-conditioned: 1.9e-7; near boundary: 9.1e-6), Fast32 1.2e-5
-    /// (ill-conditioned: 6.4e-6); 18 848 cases in all (`docs/accuracy.md`).
+    /// (ill-conditioned: 6.4e-6); 18 859 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-glossy_transmission -->
     #[inline]
     pub fn glossy_transmission(

@@ -224,8 +224,10 @@ impl PixelFormat for Rgb565 {
     }
     /// The level already packed into every channel's place: `Rgb565::new(l5, l6, l5)` with
     /// `l5`, `l6` the level rounded to 5 and 6 bits, so that a pixel is three masks and two
-    /// ORs ([`Rgb565::from_entries`]) instead of three multiply-shifts: about 20 fewer
-    /// Cortex-M0+ cycles a pixel.
+    /// ORs ([`Rgb565::from_entries`]) instead of three multiply-shifts: about 16 fewer
+    /// Cortex-M0+ cycles a pixel (the RP2040 demo's scan conversion, rp2040js: 40 184 ->
+    /// 38 465 us for 12 990 pixels; the Cortex-M4F's, QEMU: 2 324 720 -> 2 183 269
+    /// instructions for 12 793).
     #[inline]
     fn table_entry(level: u16) -> u16 {
         ((level_to(level, 31) << 11) | (level_to(level, 63) << 5) | level_to(level, 31)) as u16
