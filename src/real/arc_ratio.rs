@@ -50,7 +50,7 @@ const P: [f32; 10] = [
 
 /// `true` on soft-float targets (ARM without `eabihf`, RISC-V without F), where every float
 /// operation is a library call.
-const SOFT_FLOAT: bool = cfg!(any(
+pub(crate) const SOFT_FLOAT: bool = cfg!(any(
     all(target_arch = "arm", not(target_abi = "eabihf")),
     all(
         any(target_arch = "riscv32", target_arch = "riscv64"),
