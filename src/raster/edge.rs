@@ -285,7 +285,7 @@ impl EdgeTriangle {
     /// edge's slope takes it (at most the box's width). The row's span runs from the larger of
     /// the left edges' pixels to the smaller of the right edges': the same pixels as testing
     /// all three edges at every pixel of the box, with a cost per row that does not grow with
-    /// the span. An unused slot holds an edge that is 0 everywhere.
+    /// the span ([`scan_rows`], one loop for two left edges and one for two right ones).
     #[inline(always)]
     fn scan<E: EdgeInt, F: FnMut(i32, i32, i32)>(
         &self,
