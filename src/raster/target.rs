@@ -179,7 +179,8 @@ pub trait PixelFormat: Copy {
         level
     }
     /// The pixel from the [`EncodeTable`] entries of its red, green and blue levels: always
-    /// `from_levels` of those levels, bit for bit. The default calls it.
+    /// `from_levels` of those levels, bit for bit. The default calls it (a format that
+    /// overrides one of `table_entry` and `from_entries` overrides both).
     #[inline]
     fn from_entries(r: u16, g: u16, b: u16) -> Self {
         Self::from_levels(r, g, b)
