@@ -20,11 +20,12 @@ pub struct PhongLobe<T> {
     pub(crate) s_m_pi: T,
     pub(crate) s_m1_pi: T,
     pub(crate) hemi_cos_scale: T,
-    /// Fixed point's bound for a negligible polygon term, `(c, c^2)` with
-    /// `c = 2^(-24/(m+1)) (1 - 2^-6)`: where `r.u < c` over a polygon, its Phong term is below
-    /// `2^-24` (`polygon/negligible.rs`). `(0, 0)`, never used, for the floats and for
-    /// `m < 11` (`c` below 1/4, where the test's margins would not hold).
-    pub(crate) negligible_cos: (T, T),
+    /// Fixed point's bound for a negligible polygon term, `(c, c^2, s)` with
+    /// `c = 2^(-24/(m+1)) (1 - 2^-6)` and `s` at least `sqrt(1 - c^2)`: where `r.u < c` over a
+    /// polygon, its Phong term is below `2^-24` (`polygon/negligible.rs`). `(0, 0, 0)`, never
+    /// used, for the floats and for `m < 11` (`c` below 1/4, where the test's margins would
+    /// not hold).
+    pub(crate) negligible_cos: (T, T, T),
 }
 
 impl<T: Real> PhongLobe<T> {
@@ -77,18 +78,20 @@ impl<T: Real> PhongLobe<T> {
 
 /// [`PhongLobe`]'s `negligible_cos` for the evaluated exponent `m`: `2^(-24/(m+1))`, the
 /// cosine whose power `m + 1` is `2^-24`, lowered by `2^-6` of itself for the rounding of the
-/// test that uses it; `(0, 0)` (off) for the floats and below `m = 11`. In the type's own
-/// arithmetic (`exp`, whose error of a few units is far inside the `2^-6`): f64's `exp` would
-/// not fit the budget firmware's flash.
-fn negligible_cos<T: Real>(m: u32) -> (T, T) {
+/// test that uses it, its square, and its sine raised by `2^-16` (the bounding-ball test
+/// wants a sine no smaller than the exact one); `(0, 0, 0)` (off) for the floats and below
+/// `m = 11`. In the type's own arithmetic (`exp`, whose error of a few units is far inside
+/// the `2^-6`): f64's `exp` would not fit the budget firmware's flash.
+fn negligible_cos<T: Real>(m: u32) -> (T, T, T) {
     if !(T::RESOLUTION > T::ZERO) || m < 11 {
-        return (T::ZERO, T::ZERO);
+        return (T::ZERO, T::ZERO, T::ZERO);
     }
     let c = T::from_f64(-24.0 * core::f64::consts::LN_2)
         .div_u32(m + 1)
         .exp()
         * T::from_f64(1.0 - 1.0 / 64.0);
-    (c, c * c)
+    let c2 = c * c;
+    (c, c2, (T::ONE - c2).sqrt() + T::from_fixed_i32(1, 16))
 }
 
 #[cfg(all(test, feature = "fixed"))]
@@ -103,16 +106,22 @@ mod tests {
     fn the_negligible_cosine_is_just_below_its_exact_value() {
         for m in 11..=255u32 {
             let exact = libm::exp2(-24.0 / (f64::from(m) + 1.0)) * (1.0 - 1.0 / 64.0);
-            let (c, c2) = negligible_cos::<Fixed22>(m);
-            let (c, c2) = (c.to_f64(), c2.to_f64());
+            let (c, c2, s) = negligible_cos::<Fixed22>(m);
+            let (c, c2, s) = (c.to_f64(), c2.to_f64(), s.to_f64());
             // Fixed22's exp and product: a few units of 2^-22.
             assert!((c - exact).abs() < 1e-5, "{m}: {c} vs {exact}");
             assert!((c2 - exact * exact).abs() < 1e-5, "{m}: {c2} vs {exact}");
+            // The sine of the threshold actually used, raised: above, by less than 2^-15.
+            let s_exact = libm::sqrt(1.0 - c * c);
+            assert!(
+                s > s_exact && s < s_exact + 1.0 / 32768.0,
+                "{m}: {s} vs {s_exact}"
+            );
         }
         assert_eq!(
             negligible_cos::<Fixed22>(10),
-            (Fixed22::ZERO, Fixed22::ZERO)
+            (Fixed22::ZERO, Fixed22::ZERO, Fixed22::ZERO)
         );
-        assert_eq!(negligible_cos::<f32>(100), (0.0, 0.0));
+        assert_eq!(negligible_cos::<f32>(100), (0.0, 0.0, 0.0));
     }
 }

@@ -477,7 +477,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return Ok(T::ZERO);
         }
         // Fixed point: a term provably below 2^-24 is 0 (`polygon/negligible.rs`).
-        if T::RESOLUTION > T::ZERO && phong_negligible(self.vertices(), p, ru, lobe, r_min) {
+        if T::RESOLUTION > T::ZERO
+            && phong_negligible(self.vertices(), self.ball(), p, ru, lobe, r_min)
+        {
             return Ok(T::ZERO);
         }
         let mut beside = false;
@@ -567,8 +569,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// and a division by the step's integer (on fixed point, 4 products in
     /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). Fixed point, `m >= 11`,
     /// first tries to prove the term below `2^-24` and answers 0 at once
-    /// (`polygon/negligible.rs`: a quick rejection of 200 to 680 instructions on the M0, about
-    /// 3 000 for the whole test). Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
+    /// (`polygon/negligible.rs`: a quick rejection of 200 to 680 instructions on the M0, then
+    /// a test against the polygon's bounding ball of about 300, about 3 500 for the whole
+    /// test; the ball is not known to a polygon of world coordinates, made per sample).
+    /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
     /// 13 700 instructions (median of the budget's 16 cases; 14 790 with the offsets'
     /// products saturating, `polygon::edge::offset_products`; 14 320 before the test, 20 419
     /// with the recurrence in the type's own arithmetic and the unit vectors' products

@@ -74,6 +74,11 @@ pub(crate) use validate::validate_polygon_f64;
 pub struct PolygonLight<T, const N: usize = 8> {
     verts: Vec<Vec3<T>, N>,
     normal: Vec3<T>,
+    /// A ball around the polygon, `(centre, radius)`, the radius raised by about `1e-5` over
+    /// the exact one for the roundings (fixed point's cheap proof of a negligible Phong term,
+    /// `polygon/negligible.rs`). `None` for a polygon made from parts (the world-coordinate
+    /// path's copy, made per sample).
+    ball: Option<(Vec3<T>, T)>,
 }
 
 /// Fixed point's limit for the Lambert terms, `2^-9` (`2^13` of `Fixed22`'s `2^-22`): see
@@ -154,6 +159,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             let _ = v.push(x);
         }
         Ok(PolygonLight {
+            ball: Some(bounding_ball(&v)),
             verts: v,
             normal: Vec3::from_f64(normal),
         })
@@ -163,7 +169,18 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// validated polygon (its vertices minus `p`, scaled by a power of two) and its normal.
     #[inline(always)]
     pub(crate) fn from_parts(verts: Vec<Vec3<T>, N>, normal: Vec3<T>) -> Self {
-        PolygonLight { verts, normal }
+        PolygonLight {
+            verts,
+            normal,
+            ball: None,
+        }
+    }
+
+    /// [`PolygonLight::ball`](Self): the centre and the raised radius, if known.
+    #[cfg(feature = "phong")]
+    #[inline(always)]
+    pub(crate) fn ball(&self) -> Option<(Vec3<T>, T)> {
+        self.ball
     }
 
     /// The vertices.
@@ -290,6 +307,35 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         for_each_clipped_edge(&self.verts, p, k, T::ZERO, |e| acc.add(&e));
         acc.total().abs().min(T::TAU)
     }
+}
+
+/// A ball that holds every point of the polygon `verts` (in f64, once): the centre is the mean
+/// of the vertices rounded to `T`, the radius the largest distance from that rounded centre
+/// to a vertex, raised by `1e-6` of itself and `1e-5` (far above the rounding of the f64
+/// arithmetic and of the conversion to `T`, which rounds to nearest: `2^-23` for `Fixed22`).
+/// A polygon lies in the convex hull of its vertices, hence in any ball that holds them.
+#[cold]
+fn bounding_ball<T: Real>(verts: &[Vec3<T>]) -> (Vec3<T>, T) {
+    let n = verts.len().max(1) as f64;
+    let mut c = [0.0f64; 3];
+    for v in verts {
+        c[0] += v.x.to_f64();
+        c[1] += v.y.to_f64();
+        c[2] += v.z.to_f64();
+    }
+    let centre = Vec3::<T>::from_f64([c[0] / n, c[1] / n, c[2] / n]);
+    let c = [centre.x.to_f64(), centre.y.to_f64(), centre.z.to_f64()];
+    let mut r2 = 0.0f64;
+    for v in verts {
+        let d = [
+            v.x.to_f64() - c[0],
+            v.y.to_f64() - c[1],
+            v.z.to_f64() - c[2],
+        ];
+        r2 = r2.max(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    let r = libm::sqrt(r2);
+    (centre, T::from_f64(r * (1.0 + 1e-6) + 1e-5))
 }
 
 /// `true` if `p` projected on the plane of the polygon `verts` (unit normal `normal`) falls
