@@ -53,16 +53,20 @@ use heapless::Vec;
 
 #[cfg(any(feature = "phong", feature = "moments"))]
 mod arc;
+mod clip;
 mod edge;
 #[cfg(feature = "phong")]
 mod negligible;
 mod validate;
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use arc::{arc_axis_form, cos_power_sums};
-use edge::edge_atan_term_fixed;
+#[cfg(any(feature = "phong", feature = "moments"))]
+pub(crate) use clip::ClippedEdge;
+pub(crate) use clip::{for_each_clipped_edge, ApexFan};
 #[cfg(feature = "phong")]
 pub(crate) use edge::offset_products;
-pub(crate) use edge::{edge_angle_term, products_in_range, rescaled_products, scaled_to_unit};
+#[cfg(feature = "phong")]
+pub(crate) use edge::products_in_range;
 #[cfg(feature = "phong")]
 pub(crate) use negligible::phong_negligible;
 use validate::validate_polygon;
@@ -385,152 +389,6 @@ fn over_face_or_near<T: Real>(verts: &[Vec3<T>], normal: Vec3<T>, p: Vec3<T>, ne
     inside
 }
 
-/// One edge of the clipped ring seen from `p`: from `ua` to `ub` (points relative to `p`, not
-/// normalized), `d = ub - ua` computed from the polygon's own edge vector (no cancellation
-/// through `p`), and whether it is an arc of the horizon.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ClippedEdge<T> {
-    pub(crate) ua: Vec3<T>,
-    pub(crate) ub: Vec3<T>,
-    pub(crate) d: Vec3<T>,
-    pub(crate) horizon: bool,
-}
-
-impl<T: Real> ClippedEdge<T> {
-    /// The signed angle of a horizon arc about `k`, in (-pi, pi]: the projection of the
-    /// straight segment `ua -> ub` in the horizon plane, positive when it runs
-    /// counter-clockwise about `k`. (For a non-convex polygon the clipped ring may run along the
-    /// horizon in both directions; the arcs then cancel, so each keeps its own sign.) The sign
-    /// comes from the unnormalized `ua x ub`, which keeps its relative accuracy when the arc
-    /// nearly spans pi (the polygon seen nearly edge-on), where the cross product of
-    /// normalized directions is mostly rounding.
-    /// An arc whose products leave the normal range ([`products_in_range`]) is first scaled
-    /// by a power of two (cold path).
-    ///
-    /// `k` is a unit vector and the edge's points within the coordinate limit's offsets (every
-    /// caller's: [`edge::offset_products`]): `G = ua x d` then has components of at most 256
-    /// and `G.k` at most `|G|`, so fixed point forms them without saturation tests (the same
-    /// bits as `Vec3::cross` and `Vec3::dot`).
-    #[inline]
-    pub(crate) fn horizon_angle(&self, k: Vec3<T>) -> T {
-        let (g, mut x) = edge::offset_products(self.ua, self.ub, self.d);
-        let mut y = T::mul_unit(g.x, k.x) + T::mul_unit(g.y, k.y) + T::mul_unit(g.z, k.z);
-        let m = y.abs().max(x.abs());
-        if !products_in_range(m, m) {
-            let Some((g, dot)) = rescaled_products(self.ua, self.ub, self.d) else {
-                return T::ZERO;
-            };
-            (y, x) = (g.dot(k), dot);
-        }
-        y.atan2(x)
-    }
-
-    /// The edge's term of Lambert's formula about the unit normal `n`: the horizon arc's
-    /// signed angle, or [`edge_angle_term`]. (Inlined into the caller's walk.)
-    #[inline(always)]
-    pub(crate) fn lambert_term(&self, n: Vec3<T>) -> T {
-        if self.horizon {
-            self.horizon_angle(n)
-        } else {
-            edge_angle_term(self.ua, self.ub, self.d, n)
-        }
-    }
-
-    /// [`ClippedEdge::lambert_term`] and, for fixed point, whether the edge subtends more than
-    /// a right angle (`p` beside it) and `p` lies within about `r_min` of its line: `|G|`'s
-    /// largest component below `r_min` times `|d|`'s (the second half of the test of
-    /// [`near_limit`]; beside the edge, `|d|` is at least its ends' distances). The floats:
-    /// never.
-    #[inline(always)]
-    pub(crate) fn lambert_term_resolved(&self, n: Vec3<T>, r_min: T) -> (T, bool) {
-        if !(T::RESOLUTION > T::ZERO) {
-            return (self.lambert_term(n), false);
-        }
-        if self.horizon {
-            return (self.horizon_angle(n), false);
-        }
-        edge_atan_term_fixed(self.ua, self.ub, self.d, n, r_min)
-    }
-
-    /// The same edge scaled by a power of two that brings its largest coordinate into [1, 2)
-    /// ([`scaled_to_unit`]); `None` for an edge with no finite non-zero coordinate. Every term of an edge is scale-free, so this is the cold path of the edge
-    /// terms whose products would leave the normal range.
-    #[inline]
-    pub(crate) fn rescaled(&self) -> Option<Self> {
-        let [ua, ub, d] = scaled_to_unit([self.ua, self.ub, self.d])?;
-        Some(ClippedEdge {
-            ua,
-            ub,
-            d,
-            horizon: self.horizon,
-        })
-    }
-}
-
-/// An edge's endpoint directions and lengths and `ua x d`, for [`ApexFan::add`].
-type FanEnds<T> = (Vec3<T>, T, Vec3<T>, T, Vec3<T>);
-
-/// The signed solid angle of a ring clipped to the hemisphere `u.k >= 0`, as a fan of spherical
-/// triangles `(k, a, b)` with apex `k`, one per clipped edge `(a, b)` (Arvo 5.1 sums the same
-/// signed areas). Every clipped point has `u.k >= 0`, so every fan triangle is proper and the
-/// back-and-forth bridges of a non-convex clip cancel exactly. A polygon edge's triangle comes
-/// from Van Oosterom and Strackee's `tan(W/2) = k.(a x b)/(1 + a.b + k.a + k.b)`; a horizon
-/// arc's triangle has two vertices on the equator of `k`, so its area is exactly the arc's
-/// signed angle ([`ClippedEdge::horizon_angle`]): that is the case (a polygon seen nearly
-/// edge-on, the arc spanning nearly pi) where the general formula would divide tiny by tiny.
-pub(crate) struct ApexFan<T> {
-    apex: Vec3<T>,
-    sum: T,
-}
-
-impl<T: Real> ApexFan<T> {
-    pub(crate) fn new(apex: Vec3<T>) -> Self {
-        ApexFan { apex, sum: T::ZERO }
-    }
-
-    /// Adds the triangle (apex, ua, ub) of the clipped edge `e`.
-    ///
-    /// An edge whose products leave the normal range ([`products_in_range`]: lengths below
-    /// `TINY` or beyond `1/TINY`) is first scaled by a power of two (cold path).
-    #[inline]
-    pub(crate) fn add(&mut self, e: &ClippedEdge<T>) {
-        let k = self.apex;
-        if e.horizon {
-            self.sum += e.horizon_angle(k);
-            return;
-        }
-        let ends = |e: &ClippedEdge<T>| -> Option<FanEnds<T>> {
-            let (a, la) = e.ua.normalize_with_length()?;
-            let (b, lb) = e.ub.normalize_with_length()?;
-            let l = la.max(lb);
-            products_in_range(la * lb, l * l).then_some((a, la, b, lb, e.ua.cross(e.d)))
-        };
-        let Some((a, la, b, lb, g)) = ends(e).or_else(|| Self::rescaled_ends(e)) else {
-            return;
-        };
-        let num = k.dot(g) / (la * lb);
-        let den = T::ONE + a.dot(b) + k.dot(a) + k.dot(b);
-        self.sum += T::TWO * num.atan2(den);
-    }
-
-    /// The fan triangle's inputs from the edge scaled by a power of two (cold path; see
-    /// [`ClippedEdge::rescaled`]).
-    #[cold]
-    #[inline(never)]
-    fn rescaled_ends(e: &ClippedEdge<T>) -> Option<FanEnds<T>> {
-        let s = e.rescaled()?;
-        let (a, la) = s.ua.normalize_with_length()?;
-        let (b, lb) = s.ub.normalize_with_length()?;
-        Some((a, la, b, lb, s.ua.cross(s.d)))
-    }
-
-    /// The signed solid angle (positive for a ring counter-clockwise seen from outside, the
-    /// convention of the boundary integrals).
-    pub(crate) fn total(&self) -> T {
-        self.sum
-    }
-}
-
 /// [`PolygonLight::in_plane`] on the polygon's vertices and unit normal.
 #[inline]
 fn in_plane<T: Real>(verts: &[Vec3<T>], normal: Vec3<T>, p: Vec3<T>) -> bool {
@@ -589,113 +447,4 @@ fn lambert_fixed<T: Real>(
         return Err(Error::Unresolved("p"));
     }
     Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
-}
-
-/// Walks the ring `verts` seen from `p`, clipped to the half-space `(v - p).k >= 0`, and calls
-/// `f` with each clipped edge in ring order (see [`ClippedEdge`]); horizon arcs run between a
-/// crossing down and the next crossing up. Nothing is called if no vertex is above the
-/// horizon. No buffer and no normalization. A vertex exactly on the horizon counts as above.
-///
-/// Returns, for fixed point, whether a vertex (above the horizon or not) or a horizon
-/// crossing lies within `r_min` of `p` by its largest coordinate (the first half of the test
-/// of [`near_limit`]; the caller tests the edges beside `p`); for the floats `false`.
-///
-/// `k` is a unit vector, and `p` and the vertices lie within [`Real::COORDINATE_LIMIT`]
-/// (every caller checks them): the offsets `v - p` are then at most 8 in magnitude on fixed
-/// point, and their products with `k` need no saturation test (the sealed `dot3_small`, the
-/// bits of `Vec3::dot`).
-pub(crate) fn for_each_clipped_edge<T: Real, F>(
-    verts: &[Vec3<T>],
-    p: Vec3<T>,
-    k: Vec3<T>,
-    r_min: T,
-    mut f: F,
-) -> bool
-where
-    F: FnMut(ClippedEdge<T>),
-{
-    let near_point = |u: Vec3<T>| T::RESOLUTION > T::ZERO && T::all_within([u.x, u.y, u.z], r_min);
-    let nv = verts.len();
-    let kv = [k.x, k.y, k.z];
-    let height = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv);
-    let Some(start) = verts.iter().position(|&v| height(v - p) >= T::ZERO) else {
-        // Nothing above: only the vertices' distances to test (fixed point).
-        return T::RESOLUTION > T::ZERO && verts.iter().any(|&v| near_point(v - p));
-    };
-    // The ring from `start` round to `start` again: `v0` the edge's first vertex, `v1` its
-    // second, the index stepped with a wrap (no division: a library call on the M0; `get`, so
-    // no bounds check can panic).
-    let Some(&first) = verts.get(start) else {
-        return false;
-    };
-    let (mut v0, mut i1) = (first, start);
-    let mut u0 = v0 - p;
-    let mut d0 = height(u0);
-    // The start of the current clipped edge (a vertex or a crossing up).
-    let mut a0 = u0;
-    let mut below0 = false;
-    let mut exit: Option<Vec3<T>> = None;
-    // (Every vertex is `u1` once, the start last.)
-    let mut near = false;
-    for _ in 0..nv {
-        i1 = if i1 + 1 == nv { 0 } else { i1 + 1 };
-        let Some(&v1) = verts.get(i1) else {
-            break;
-        };
-        let u1 = v1 - p;
-        near |= near_point(u1);
-        let d1 = height(u1);
-        let below1 = d1 < T::ZERO;
-        let edge = v1 - v0;
-        v0 = v1;
-        match (below0, below1) {
-            (false, false) => {
-                // Here a0 is the vertex u0, so d is the polygon's own edge.
-                f(ClippedEdge {
-                    ua: a0,
-                    ub: u1,
-                    d: edge,
-                    horizon: false,
-                });
-                a0 = u1;
-            }
-            (false, true) => {
-                let t = (d0 / (d0 - d1)).clamp01();
-                let x = u0 + edge * t;
-                near |= near_point(x);
-                f(ClippedEdge {
-                    ua: a0,
-                    ub: x,
-                    d: edge * t,
-                    horizon: false,
-                });
-                exit = Some(x);
-            }
-            (true, false) => {
-                let t = (d0 / (d0 - d1)).clamp01();
-                let x = u0 + edge * t;
-                near |= near_point(x);
-                if let Some(e) = exit.take() {
-                    f(ClippedEdge {
-                        ua: e,
-                        ub: x,
-                        d: x - e,
-                        horizon: true,
-                    });
-                }
-                f(ClippedEdge {
-                    ua: x,
-                    ub: u1,
-                    d: edge * (T::ONE - t),
-                    horizon: false,
-                });
-                a0 = u1;
-            }
-            (true, true) => {}
-        }
-        u0 = u1;
-        d0 = d1;
-        below0 = below1;
-    }
-    near
 }
