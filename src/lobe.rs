@@ -76,14 +76,24 @@ impl<T: Real> PhongLobe<T> {
     }
 }
 
+/// Whether the type answers 0 for a Phong term it proves below `2^-24` (`polygon/negligible.rs`,
+/// and the cap's test in `phong.rs`): fixed point (`2^-24` is a quarter of `Fixed22`'s unit),
+/// f32 and `Fast32` (`2^-24` is 3 % of f32's error budget of `2e-6`, and a proof costs a
+/// fraction of the term), not f64 (decided at compile time).
+#[inline(always)]
+pub(crate) fn negligible_terms<T: Real>() -> bool {
+    T::RESOLUTION > T::ZERO || T::EPSILON > T::from_f64(1e-10)
+}
+
 /// [`PhongLobe`]'s `negligible_cos` for the evaluated exponent `m`: `2^(-24/(m+1))`, the
 /// cosine whose power `m + 1` is `2^-24`, lowered by `2^-6` of itself for the rounding of the
 /// test that uses it, its square, and its sine raised by `2^-16` (the bounding-ball test
-/// wants a sine no smaller than the exact one); `(0, 0, 0)` (off) for the floats and below
-/// `m = 11`. In the type's own arithmetic (`exp`, whose error of a few units is far inside
-/// the `2^-6`): f64's `exp` would not fit the budget firmware's flash.
+/// wants a sine no smaller than the exact one); `(0, 0, 0)` (off) for f64 (the reference, whose
+/// terms are kept however small) and below `m = 11`. In the type's own arithmetic (`exp`,
+/// whose error of a few units is far inside the `2^-6`): f64's `exp` would not fit the
+/// budget firmware's flash.
 fn negligible_cos<T: Real>(m: u32) -> (T, T, T) {
-    if !(T::RESOLUTION > T::ZERO) || m < 11 {
+    if !negligible_terms::<T>() || m < 11 {
         return (T::ZERO, T::ZERO, T::ZERO);
     }
     let c = T::from_f64(-24.0 * core::f64::consts::LN_2)
@@ -122,6 +132,12 @@ mod tests {
             negligible_cos::<Fixed22>(10),
             (Fixed22::ZERO, Fixed22::ZERO, Fixed22::ZERO)
         );
-        assert_eq!(negligible_cos::<f32>(100), (0.0, 0.0, 0.0));
+        assert_eq!(negligible_cos::<f64>(100), (0.0, 0.0, 0.0));
+        assert_eq!(negligible_cos::<f32>(10), (0.0, 0.0, 0.0));
+        let exact = libm::exp2(-24.0 / 101.0) * (1.0 - 1.0 / 64.0);
+        let (c, _, s) = negligible_cos::<f32>(100);
+        assert!(
+            (f64::from(c) - exact).abs() < 1e-6 && f64::from(s) > libm::sqrt(1.0 - exact * exact)
+        );
     }
 }

@@ -59,11 +59,14 @@
 use crate::cap::{CapLight, SphereCap, SphereLight};
 #[cfg(feature = "hemisphere")]
 use crate::hemisphere::HemisphereLight;
+#[cfg(any(feature = "cap", feature = "polygon"))]
+use crate::lobe::negligible_terms;
 pub use crate::lobe::{PhongLobe, MAX_EXPONENT};
 #[cfg(feature = "polygon")]
 use crate::polygon::{
-    arc_axis_form, cos_power_sums, for_each_clipped_edge, near_limit, offset_products,
-    phong_near_log2, phong_negligible, products_in_range, ClippedEdge, PolygonLight,
+    arc_axis_form, cos_power_sums, floats_ball_below, for_each_clipped_edge, near_limit,
+    offset_products, phong_near_log2, phong_negligible, products_in_range, ClippedEdge,
+    PolygonLight,
 };
 #[cfg(feature = "hemisphere")]
 use crate::sine_power::sine_power_integral;
@@ -219,7 +222,7 @@ impl<T: Real> SphereCap<T> {
 /// Snyder's eq. 24 in the stable form of the module docs, from `c = cos w`, `s = sin w`
 /// (`w` between `r` and the cap axis), `cs`, `ss`, for the lobe's evaluated exponent `m`.
 ///
-/// Fixed point first tries to prove the term negligible, as for polygons
+/// Fixed point, f32 and Fast32 first try to prove the term negligible, as for polygons
 /// (`polygon/negligible.rs`): with `r` outside the cap (`w > sigma`, `c < cs`), `r.u` is at
 /// most `cos(w - sigma) = c cs + s ss` on it, so the term is at most that to the power
 /// `m + 1`, and below `2^-24` where that cosine is below the lobe's threshold (lowered by
@@ -229,7 +232,7 @@ impl<T: Real> SphereCap<T> {
 #[cfg(feature = "cap")]
 fn phong_cap_from_angle<T: Real>(lobe: &PhongLobe<T>, c: T, s: T, cs: T, ss: T) -> T {
     let m = lobe.m;
-    if T::RESOLUTION > T::ZERO
+    if negligible_terms::<T>()
         && c < cs
         && T::mul_small(c, cs) + T::mul_small(s, ss) < lobe.negligible_cos.0
     {
@@ -287,12 +290,14 @@ impl<T: Real> CapLight<T> {
     ///
     /// Accuracy: measured, below. Cost: 1 normalization, 1 cross product, 1 sqrt; if the
     /// cap crosses the horizon of `r` also 1 sqrt, 1-2 atan2, 1 division; then `m - 1`
-    /// recurrence steps of ~8 operations. Fixed point, `m >= 11`: 0 at once, after 2 products,
-    /// where `r` is outside the cap and `r.u` on it is provably too small for the term to
-    /// reach `2^-24` (a quarter of `Fixed22`'s unit; the recurrence's own error is larger).
-    /// Measured on the Cortex-M0 (`Fixed22`, QEMU, the budget's 16 cases at m = 16): the 2 such
-    /// cases 5 887 -> 978 instructions, the others within +-46. Fallback: 0 for a zero or
-    /// non-finite `r`.
+    /// recurrence steps of ~8 operations. Fixed point, f32 and Fast32, `m >= 11`: 0 at once,
+    /// after 2 products, where `r` is outside the cap and `r.u` on it is provably too small for
+    /// the term to reach `2^-24` (a quarter of `Fixed22`'s unit, 3 % of f32's error budget; the
+    /// recurrence's own error is larger). Measured on the Cortex-M0 (`Fixed22`, QEMU, the
+    /// budget's 16 cases at m = 16): the 2 such cases 5 887 -> 978 instructions, the others
+    /// within +-46; on the Cortex-M4F (f32), the 2 such cases 515 -> 107, the others at most
+    /// 13 dearer (8 of the 16 cases now below 120, so the budget's median falls from 415 to
+    /// 113). Fallback: 0 for a zero or non-finite `r`.
     ///
     /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
     /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,
@@ -476,10 +481,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             self.resolved_in_plane(p, r_min)?;
             return Ok(T::ZERO);
         }
-        // Fixed point: a term provably below 2^-24 is 0 (`polygon/negligible.rs`).
-        if T::RESOLUTION > T::ZERO
-            && phong_negligible(self.vertices(), self.ball(), p, ru, lobe, r_min)
-        {
+        // Fixed point, f32 and Fast32: a term provably below 2^-24 is 0
+        // (`polygon/negligible.rs`).
+        if T::RESOLUTION > T::ZERO {
+            if phong_negligible(self.vertices(), self.ball(), p, ru, lobe, r_min) {
+                return Ok(T::ZERO);
+            }
+        } else if negligible_terms::<T>() && floats_ball_below(self.ball(), p, ru, lobe) {
             return Ok(T::ZERO);
         }
         let mut beside = false;
@@ -567,11 +575,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// plane normal; the `(cos x, sin x)` pair), ~5 dot products, 1 atan2 (`x` for odd m, the
     /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
     /// and a division by the step's integer (on fixed point, 4 products in
-    /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). Fixed point, `m >= 11`,
-    /// first tries to prove the term below `2^-24` and answers 0 at once
-    /// (`polygon/negligible.rs`: a quick rejection of 200 to 680 instructions on the M0, then
-    /// a test against the polygon's bounding ball of about 300, about 3 500 for the whole
-    /// test; the ball is not known to a polygon of world coordinates, made per sample).
+    /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). For `m >= 11`, fixed
+    /// point, f32 and Fast32 first try to prove the term below `2^-24` and answer 0 at once
+    /// (`polygon/negligible.rs`; fixed point: a quick rejection of 200 to 680 instructions on
+    /// the M0, then a test against the polygon's bounding ball of about 300, about 3 500 for
+    /// the whole test; the floats: the ball's test alone, 41 M4F instructions, which proves 6
+    /// of the budget's 16 cases, 256 -> 172 and 1 490 -> 180; the ball is not known to a
+    /// polygon of world coordinates, made per sample).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
     /// 13 700 instructions (median of the budget's 16 cases; 14 790 with the offsets'
     /// products saturating, `polygon::edge::offset_products`; 14 320 before the test, 20 419

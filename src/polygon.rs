@@ -68,7 +68,7 @@ pub(crate) use edge::offset_products;
 #[cfg(feature = "phong")]
 pub(crate) use edge::products_in_range;
 #[cfg(feature = "phong")]
-pub(crate) use negligible::phong_negligible;
+pub(crate) use negligible::{floats_ball_below, phong_negligible};
 use validate::validate_polygon;
 pub(crate) use validate::validate_polygon_f64;
 
