@@ -142,7 +142,10 @@ pub(super) fn edge_angle_finish<T: Real>(g: Vec3<T>, m: T, dot: T, k: Vec3<T>) -
     let g = [g.x, g.y, g.z];
     let (s, inv) = T::dot3_small(g, g).sqrt_rsqrt();
     let theta = (s * d).atan2(dot);
-    (theta * T::dot3_small(g, [k.x, k.y, k.z]) * inv).finite_or_zero()
+    // theta <= pi, |G.k| <= |G| <= 2 sqrt(3) and 1/|G| <= 2 (the largest component is at
+    // least 1/2): factors below 16 and products below 22, the bits of `*` without fixed
+    // point's saturation tests.
+    T::mul_small(T::mul_small(theta, T::dot3_small(g, [k.x, k.y, k.z])), inv).finite_or_zero()
 }
 
 /// `(ua x d, ua.ub)` of a clipped edge, bit for bit [`Vec3::cross`] and [`Vec3::dot`], for the
