@@ -296,8 +296,8 @@ impl<T: Real> CapLight<T> {
     /// recurrence's own error is larger). Measured on the Cortex-M0 (`Fixed22`, QEMU, the
     /// budget's 16 cases at m = 16): the 2 such cases 5 887 -> 978 instructions, the others
     /// within +-46; on the Cortex-M4F (f32), the 2 such cases 515 -> 107, the others at most
-    /// 13 dearer (8 of the 16 cases now below 120, so the budget's median falls from 415 to
-    /// 113). Fallback: 0 for a zero or non-finite `r`.
+    /// 13 dearer (the budget table's median 421 -> 427). Fallback: 0 for a zero or non-finite
+    /// `r`.
     ///
     /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
     /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,
@@ -583,11 +583,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// of the budget's 16 cases, 256 -> 172 and 1 490 -> 180; the ball is not known to a
     /// polygon of world coordinates, made per sample).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 13 700 instructions (median of the budget's 16 cases; 14 790 with the offsets'
-    /// products saturating, `polygon::edge::offset_products`; 14 320 before the test, 20 419
-    /// with the recurrence in the type's own arithmetic and the unit vectors' products
-    /// saturating); on the Cortex-M4F in f32, 1 892 (1 943 with the step's integers converted
-    /// to floats at every step). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond
+    /// 13 696 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
+    /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 933 (1 892 without the
+    /// ball's test, which that case fails; 1 943 with the step's integers converted to floats
+    /// at every step). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond
     /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
     /// scaled by a power of two first, on a cold path that costs nothing when not taken.
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane or

@@ -81,7 +81,7 @@ pub struct PolygonLight<T, const N: usize = 8> {
     /// A ball around the polygon, `(centre, radius)`, the radius raised by about `1e-5` over
     /// the exact one for the roundings (fixed point's cheap proof of a negligible Phong term,
     /// `polygon/negligible.rs`). `None` for a polygon made from parts (the world-coordinate
-    /// path's copy, made per sample).
+    /// path's copy, made per sample) and without the `phong` feature.
     ball: Option<(Vec3<T>, T)>,
 }
 
@@ -163,7 +163,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             let _ = v.push(x);
         }
         Ok(PolygonLight {
-            ball: Some(bounding_ball(&v)),
+            // (Only the Phong terms use it: a build without them carries no f64 square root.)
+            ball: if cfg!(feature = "phong") {
+                Some(bounding_ball(&v))
+            } else {
+                None
+            },
             verts: v,
             normal: Vec3::from_f64(normal),
         })
@@ -279,8 +284,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// an FPU, an edge within a right angle 1 cross product, 4 dot products, 1 sqrt,
     /// 1 division and a degree-9 polynomial instead ([`Real::arc_ratio`]); per horizon
     /// crossing: a few multiply-adds. Measured on a quad (QEMU, median): 692 Cortex-M4F
-    /// instructions in f32 (920 with the arc tangent), 5 073 Cortex-M0 instructions in
-    /// `Fixed22` (6 325 with the offsets' products saturating: `polygon::edge::offset_products`).
+    /// instructions in f32 (920 with the arc tangent), 4 932 Cortex-M0 instructions in
+    /// `Fixed22` (5 073 with the edge term's last two products saturating, 6 325 with the
+    /// offsets' products saturating too: `polygon::edge::offset_products`).
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the
     /// polygon's plane (fixed point: 0 too where [`PolygonLight::try_lambert`] reports
     /// [`Error::Unresolved`], over the face or near the boundary).
