@@ -134,10 +134,24 @@ mod tests {
         );
         assert_eq!(negligible_cos::<f64>(100), (0.0, 0.0, 0.0));
         assert_eq!(negligible_cos::<f32>(10), (0.0, 0.0, 0.0));
-        let exact = libm::exp2(-24.0 / 101.0) * (1.0 - 1.0 / 64.0);
-        let (c, _, s) = negligible_cos::<f32>(100);
-        assert!(
-            (f64::from(c) - exact).abs() < 1e-6 && f64::from(s) > libm::sqrt(1.0 - exact * exact)
-        );
+        // The floats (f32, and Fast32 with its own exp): for every exponent the threshold's
+        // power m + 1 stays below 2^-24 (what the proofs need), within 1e-5 of the intended
+        // value, and the sine is at least that of the threshold used.
+        fn floats<T: Real>() {
+            for m in 11..=255u32 {
+                let exact = libm::exp2(-24.0 / (f64::from(m) + 1.0)) * (1.0 - 1.0 / 64.0);
+                let (c, c2, s) = negligible_cos::<T>(m);
+                let (c, c2, s) = (c.to_f64(), c2.to_f64(), s.to_f64());
+                assert!((c - exact).abs() < 1e-5, "{m}: {c} vs {exact}");
+                assert!(
+                    libm::pow(c, f64::from(m) + 1.0) < 1.0 / 16_777_216.0,
+                    "{m}: {c}"
+                );
+                assert!(c2 <= c * c * (1.0 + 1e-6), "{m}: {c2} vs {c}");
+                assert!(s >= libm::sqrt(1.0 - c * c), "{m}: {s}");
+            }
+        }
+        floats::<f32>();
+        floats::<crate::Fast32>();
     }
 }
