@@ -20,10 +20,10 @@ pub struct PhongLobe<T> {
     pub(crate) s_m_pi: T,
     pub(crate) s_m1_pi: T,
     pub(crate) hemi_cos_scale: T,
-    /// Fixed point's bound for a negligible polygon term, `(c, c^2, s)` with
+    /// The bound for a negligible Phong term (fixed point, f32, Fast32), `(c, c^2, s)` with
     /// `c = 2^(-24/(m+1)) (1 - 2^-6)` and `s` at least `sqrt(1 - c^2)`: where `r.u < c` over a
-    /// polygon, its Phong term is below `2^-24` (`polygon/negligible.rs`). `(0, 0, 0)`, never
-    /// used, for the floats and for `m < 11` (`c` below 1/4, where the test's margins would
+    /// polygon or a cap, its Phong term is below `2^-24` (`polygon/negligible.rs`). `(0, 0,
+    /// 0)`, never used, for f64 and for `m < 11` (`c` below 1/4, where the test's margins would
     /// not hold).
     pub(crate) negligible_cos: (T, T, T),
 }
