@@ -580,8 +580,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// (`polygon/negligible.rs`; fixed point: a quick rejection of 200 to 680 instructions on
     /// the M0, then a test against the polygon's bounding ball of about 300, about 3 500 for
     /// the whole test; the floats: the ball's test alone, 41 M4F instructions, which proves 6
-    /// of the budget's 16 cases, 256 -> 172 and 1 490 -> 180; the ball is not known to a
-    /// polygon of world coordinates, made per sample).
+    /// of the budget's 16 cases, 256 -> 172 and 1 490 -> 180; a
+    /// [`WorldPolygonLight`](crate::world::WorldPolygonLight) scales its own ball with the
+    /// polygon).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
     /// 13 696 instructions (median of the budget's 16 cases, a case the test does not prove;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320

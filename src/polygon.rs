@@ -80,8 +80,8 @@ pub struct PolygonLight<T, const N: usize = 8> {
     normal: Vec3<T>,
     /// A ball around the polygon, `(centre, radius)`, the radius raised by about `1e-5` over
     /// the exact one for the roundings (fixed point's cheap proof of a negligible Phong term,
-    /// `polygon/negligible.rs`). `None` for a polygon made from parts (the world-coordinate
-    /// path's copy, made per sample) and without the `phong` feature.
+    /// `polygon/negligible.rs`). `None` without the `phong` feature; the world-coordinate
+    /// path's copy, made per sample, carries the world light's own ball, scaled.
     ball: Option<(Vec3<T>, T)>,
 }
 
@@ -182,6 +182,17 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             verts,
             normal,
             ball: None,
+        }
+    }
+
+    /// The same polygon with the ball `(centre, radius)`, which must hold it (the world
+    /// path's scaled copy of its own ball).
+    #[cfg(feature = "phong")]
+    #[inline(always)]
+    pub(crate) fn with_ball(self, centre: Vec3<T>, radius: T) -> Self {
+        PolygonLight {
+            ball: Some((centre, radius)),
+            ..self
         }
     }
 

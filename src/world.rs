@@ -60,7 +60,9 @@
 //! Per sample: three 64-bit subtractions per point of the light, one leading-zero count and a
 //! shift per coordinate, one conversion per coordinate (fixed point: a shift and a rounding;
 //! f32: an integer-to-float conversion and a product), then the light's model at `p = 0`, the
-//! plain model's cost. Not yet counted on the targets: the QEMU budget image for the Cortex-M0
+//! plain model's cost. A polygon's Phong terms also scale the polygon's ball (its centre as
+//! one more point, its radius as one more value) for the proof of a negligible term
+//! (`polygon/negligible.rs`). Not yet counted on the targets: the QEMU budget image for the Cortex-M0
 //! has 940 bytes of its 256 KiB map left (`llvm-size -A`); adding the world lights' cases there
 //! is open work.
 //!
@@ -170,13 +172,14 @@ impl WorldPoint {
 
 /// Scales every value of `vals` by the one power of two that puts the largest magnitude in
 /// `[2^61, 2^62]` (left shifts exact; a right shift by one bit, for magnitudes from `2^62`,
-/// rounded half up). All zero: left as it is. Every `|v| < 2^63`.
+/// rounded half up). All zero: left as it is. Every `|v| < 2^63`. Returns the shift: `k >= 0`
+/// for `2^k`, -1 for the halving.
 #[inline]
-fn scale_to_q60(vals: &mut [i64]) {
+fn scale_to_q60(vals: &mut [i64]) -> i32 {
     // The OR of the magnitudes has the largest one's leading bit.
     let m = vals.iter().fold(0u64, |m, v| m | v.unsigned_abs());
     if m == 0 {
-        return;
+        return 0;
     }
     let lz = m.leading_zeros();
     if lz >= 2 {
@@ -184,11 +187,13 @@ fn scale_to_q60(vals: &mut [i64]) {
         for v in vals.iter_mut() {
             *v <<= k;
         }
+        k as i32
     } else {
         for v in vals.iter_mut() {
             // Half up, without the overflow of `v + 1`.
             *v = (*v >> 1) + (*v & 1);
         }
+        -1
     }
 }
 

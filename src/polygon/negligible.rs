@@ -26,9 +26,9 @@
 //!
 //! # A ball first
 //! Before the vertices are normalized, a cheaper sufficient test: the polygon lies in a ball
-//! (centre and radius computed once by [`PolygonLight::new`](crate::PolygonLight::new); not
-//! for the world-coordinate path's copy, made per sample), so every direction of `W` lies in
-//! the cone from `p` around that ball. If the angle between `r` and the cone's axis exceeds
+//! (centre and radius computed once by [`PolygonLight::new`](crate::PolygonLight::new), and
+//! by `WorldPolygonLight::new` in world units, scaled with the polygon for each sample), so
+//! every direction of `W` lies in the cone from `p` around that ball. If the angle between `r` and the cone's axis exceeds
 //! the cone's half-angle plus the threshold's angle, `r.u` stays below the threshold on the
 //! whole cone ([`cone_below`]: no square root, no normalization).
 //!
