@@ -75,10 +75,12 @@ fn black<T: Real>() -> Rgb<T> {
     Rgb::splat(T::ZERO)
 }
 
-/// Channel-wise product.
+/// Channel-wise product (fixed point: without saturation tests where one side lies within
+/// `(-1, 1)`, the same bits).
 #[inline(always)]
 pub(crate) fn mul_rgb<T: Real>(a: Rgb<T>, b: Rgb<T>) -> Rgb<T> {
-    Rgb::new(a.r * b.r, a.g * b.g, a.b * b.b)
+    let [r, g, b] = T::mul_each([a.r, a.g, a.b], [b.r, b.g, b.b]);
+    Rgb::new(r, g, b)
 }
 
 impl<T: Real, L: Illuminant<T> + ?Sized> Illuminant<T> for &L {

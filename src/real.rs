@@ -65,6 +65,14 @@ pub(crate) mod sealed {
                 a[0] * b[1] - a[1] * b[0],
             ]
         }
+        /// The channel-wise product `[a0 b0, a1 b1, a2 b2]` of any two triples (colours): the
+        /// value of `*`, bit for bit. Fixed point skips the saturation tests when either triple
+        /// lies within `(-1, 1)` (a model's normalized value, a reflectance), where a product
+        /// cannot saturate.
+        #[inline(always)]
+        fn mul_each(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+            [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+        }
         /// `a c` for a factor `c` of at most 1 in magnitude (and `a` above the most negative
         /// value of the type when `c = -1`): the value of `*`, bit for bit (fixed point without
         /// its saturation test, which such a product never needs: `|a c| <= |a|`).

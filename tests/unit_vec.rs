@@ -167,3 +167,34 @@ fn the_mirror_of_a_unit_vector_is_unit() {
     println!("[unit] | |reflect(v, n)| - 1 | in units of the resolution (f64, f32, Fast32, Fixed22): {worst:.2?}");
     assert!(worst.iter().all(|&w| w <= 12.0), "{worst:?}");
 }
+
+/// `reflect` against its defining formula `n (2 n.v) - v` in the type's own `*` and `+`, bit
+/// for bit (fixed point forms the products without saturation tests): random unit pairs, the
+/// axes and their opposites.
+fn reflect_matches_its_formula<T: Real>(seed: u64) {
+    let mut rng = Rng::new(seed);
+    let axes = [
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let mut dirs: Vec<[f64; 3]> = axes.to_vec();
+    dirs.extend((0..20_000).map(|_| rng.dir()));
+    for (i, &a) in dirs.iter().enumerate() {
+        let b = dirs[(i * 7 + 3) % dirs.len()];
+        let n = v::<T>(a).to_unit().unwrap();
+        let e = v::<T>(b).to_unit().unwrap();
+        let (ni, ei) = (n.into_inner(), e.into_inner());
+        let want = ni * (T::TWO * ni.dot(ei)) - ei;
+        assert_eq!(reflect(e, n).into_inner(), want, "{a:?} {b:?}");
+    }
+}
+
+#[test]
+fn the_mirror_is_its_formula_bit_for_bit() {
+    reflect_matches_its_formula::<f64>(15);
+    reflect_matches_its_formula::<f32>(16);
+    reflect_matches_its_formula::<Fast32>(17);
+    reflect_matches_its_formula::<Fixed22>(18);
+}

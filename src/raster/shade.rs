@@ -74,10 +74,14 @@ impl<T: Real> Material<T> {
 
 /// The mirror direction `2 (n.v) n - v` of `v` about the unit normal `n`: unit by
 /// construction (the mirror of a unit vector), to the rounding of its 6 multiply-adds.
+/// Fixed point forms its products without saturation tests (unit vectors, and `2 (n.v)` at
+/// most 2: factors below 16), the bits of `n * (2 n.dot(v)) - v`.
 #[inline]
 pub fn reflect<T: Real>(v: UnitVec3<T>, n: UnitVec3<T>) -> UnitVec3<T> {
+    let k = T::TWO * n.dot_unit(v);
     let (v, n) = (v.into_inner(), n.into_inner());
-    UnitVec3::new_unchecked(n * (T::TWO * n.dot(v)) - v)
+    let s = |c: T| T::mul_small(c, k);
+    UnitVec3::new_unchecked(Vec3::new(s(n.x), s(n.y), s(n.z)) - v)
 }
 
 /// A [`Material`] lit by an [`Illuminant`]: `diffuse * light.diffuse(p, n) +

@@ -564,6 +564,25 @@ impl super::sealed::Sealed for Fixed22 {
             Fixed22::from_bits(p(0, 1).wrapping_sub(p(1, 0))),
         ]
     }
+    /// By `mul_bits_unit` when either triple lies within `(-1, 1)` (`all_within`: two
+    /// comparisons a component), with the other triple's components as `a`: exact `floor(a c
+    /// / 2^22)` that cannot saturate, about 14 instead of 27 Cortex-M0 instructions a product;
+    /// by `*` otherwise. The same bits either way.
+    #[inline(always)]
+    fn mul_each(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        let one = Fixed22::from_bits(1 << FRAC);
+        let unit = |x: [Self; 3], c: [Self; 3]| {
+            let p = |k: usize| Fixed22::from_bits(mul_bits_unit(x[k].to_bits(), c[k].to_bits()));
+            [p(0), p(1), p(2)]
+        };
+        if Self::all_within(a, one) {
+            unit(b, a)
+        } else if Self::all_within(b, one) {
+            unit(a, b)
+        } else {
+            [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+        }
+    }
     /// `mul_bits_unit`: exact `floor(a c / 2^22)` without the saturation test (`|c| <= 1`).
     #[inline(always)]
     fn mul_unit(a: Self, c: Self) -> Self {
@@ -692,6 +711,50 @@ mod tests {
             }
             a += 1_000_003;
         }
+    }
+
+    /// `mul_each` is `*` channel by channel, whichever side lies within `(-1, 1)` (or
+    /// neither): triples drawn from the edges of that range and of the type (1 itself, `MIN`,
+    /// `MAX`) and random values of every magnitude, both ways round.
+    #[test]
+    fn channel_products_are_bit_identical() {
+        use crate::real::sealed::Sealed;
+        let one = 1i32 << 22;
+        let edges = [
+            i32::MIN,
+            i32::MIN + 1,
+            -one - 1,
+            -one,
+            -one + 1,
+            -1,
+            0,
+            1,
+            one - 1,
+            one,
+            one + 1,
+            i32::MAX,
+        ];
+        let mut next = crate::test_rng::xorshift32(0x0BAD_5EED);
+        let mut pick = |k: u32| -> Fixed22 {
+            let r = next();
+            Fixed22::from_bits(match k % 3 {
+                0 => edges[(r % edges.len() as u32) as usize],
+                // Within (-1, 1), near its edges or anywhere in it.
+                1 => (r as i32) >> 9,
+                _ => (r as i32) >> (r % 31),
+            })
+        };
+        let mut within = 0;
+        for i in 0..300_000u32 {
+            let a = [pick(i), pick(i / 3), pick(i / 9)];
+            let b = [pick(i / 27), pick(i / 81), pick(i / 243)];
+            let want = [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
+            assert_eq!(<Fixed22 as Sealed>::mul_each(a, b), want, "{a:?} * {b:?}");
+            assert_eq!(<Fixed22 as Sealed>::mul_each(b, a), want, "{b:?} * {a:?}");
+            within += usize::from(<Fixed22 as Sealed>::all_within(a, Fixed22::ONE));
+        }
+        // Both paths taken often.
+        assert!(within > 10_000 && within < 290_000, "{within}");
     }
 
     /// The fused dot product is exactly `floor(k0 + sum k m / 2^22)`, saturated: random `k`
