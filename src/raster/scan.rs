@@ -23,11 +23,10 @@ const BARY_FRAC: u32 = 24;
 /// to `[0, COLOUR_MAX]`.
 #[inline]
 pub(super) fn colour_bits<T: Real>(c: Rgb<T>, exposure: T) -> [i32; 3] {
-    [c.r, c.g, c.b].map(|x| {
-        (x * exposure)
-            .to_fixed_i32(COLOUR_FRAC)
-            .clamp(0, COLOUR_MAX)
-    })
+    // (The channels times the exposure, `*`'s bits; fixed point without saturation tests
+    // where the colour or the exposure lies within (-1, 1).)
+    T::mul_each([c.r, c.g, c.b], [exposure; 3])
+        .map(|x| x.to_fixed_i32(COLOUR_FRAC).clamp(0, COLOUR_MAX))
 }
 
 /// What a triangle's scan conversion needs of a vertex.
