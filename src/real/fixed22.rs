@@ -564,20 +564,26 @@ impl super::sealed::Sealed for Fixed22 {
             Fixed22::from_bits(p(0, 1).wrapping_sub(p(1, 0))),
         ]
     }
-    /// By `mul_bits_unit` when either triple lies within `(-1, 1)` (`all_within`: two
-    /// comparisons a component), with the other triple's components as `a`: exact `floor(a c
+    /// By `mul_bits_unit` when either triple lies within `(-1, 1)` (one unsigned comparison
+    /// a component), with the other triple's components as `a`: exact `floor(a c
     /// / 2^22)` that cannot saturate, about 14 instead of 27 Cortex-M0 instructions a product;
     /// by `*` otherwise. The same bits either way.
     #[inline(always)]
     fn mul_each(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
-        let one = Fixed22::from_bits(1 << FRAC);
+        // -1 < c < 1 for each component, as `all_within`: one unsigned comparison each.
+        let within = |v: [Self; 3]| {
+            let inside = |c: Self| (c.to_bits().wrapping_add(1 << FRAC) as u32).wrapping_sub(1);
+            inside(v[0]) < (2 << FRAC) - 1
+                && inside(v[1]) < (2 << FRAC) - 1
+                && inside(v[2]) < (2 << FRAC) - 1
+        };
         let unit = |x: [Self; 3], c: [Self; 3]| {
             let p = |k: usize| Fixed22::from_bits(mul_bits_unit(x[k].to_bits(), c[k].to_bits()));
             [p(0), p(1), p(2)]
         };
-        if Self::all_within(a, one) {
+        if within(a) {
             unit(b, a)
-        } else if Self::all_within(b, one) {
+        } else if within(b) {
             unit(a, b)
         } else {
             [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
@@ -751,7 +757,7 @@ mod tests {
             let want = [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
             assert_eq!(<Fixed22 as Sealed>::mul_each(a, b), want, "{a:?} * {b:?}");
             assert_eq!(<Fixed22 as Sealed>::mul_each(b, a), want, "{b:?} * {a:?}");
-            within += usize::from(<Fixed22 as Sealed>::all_within(a, Fixed22::ONE));
+            within += usize::from(a.iter().all(|c| c.to_bits().unsigned_abs() < 1 << 22));
         }
         // Both paths taken often.
         assert!(within > 10_000 && within < 290_000, "{within}");
