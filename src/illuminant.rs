@@ -76,7 +76,7 @@ fn black<T: Real>() -> Rgb<T> {
 }
 
 /// Channel-wise product (fixed point: without saturation tests where one side lies within
-/// `(-1, 1)`, the same bits).
+/// `(-1, 1]`, the same bits).
 #[inline(always)]
 pub(crate) fn mul_rgb<T: Real>(a: Rgb<T>, b: Rgb<T>) -> Rgb<T> {
     let [r, g, b] = T::mul_each([a.r, a.g, a.b], [b.r, b.g, b.b]);

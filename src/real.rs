@@ -67,7 +67,7 @@ pub(crate) mod sealed {
         }
         /// The channel-wise product `[a0 b0, a1 b1, a2 b2]` of any two triples (colours): the
         /// value of `*`, bit for bit. Fixed point skips the saturation tests when either triple
-        /// lies within `(-1, 1)` (a model's normalized value, a reflectance), where a product
+        /// lies within `(-1, 1]` (a model's normalized value, a reflectance), where a product
         /// cannot saturate.
         #[inline(always)]
         fn mul_each(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {

@@ -24,7 +24,7 @@ const BARY_FRAC: u32 = 24;
 #[inline]
 pub(super) fn colour_bits<T: Real>(c: Rgb<T>, exposure: T) -> [i32; 3] {
     // (The channels times the exposure, `*`'s bits; fixed point without saturation tests
-    // where the colour or the exposure lies within (-1, 1).)
+    // where the colour or the exposure lies within (-1, 1].)
     T::mul_each([c.r, c.g, c.b], [exposure; 3])
         .map(|x| x.to_fixed_i32(COLOUR_FRAC).clamp(0, COLOUR_MAX))
 }
