@@ -1,0 +1,84 @@
+//! The normalizations' pieces for [`Fixed22`](super::Fixed22): the rescaling by a power of
+//! two that brings a vector's largest component to `[1, 2)` ([`rescale_by_top`]), its sum of
+//! squares without saturation tests ([`unit_scale`]), and the square root and reciprocal
+//! square root of that sum from one table-seeded core ([`unit_sqrt_rsqrt`], [`unit_rsqrt`]).
+//! `Real::normalize3`, `Real::unit3` and the sealed `sphere_ratios` are put together from
+//! them.
+
+use super::kernels::{
+    clz, even_top_of_square_sum, mul_bits_small, rsqrt_core_at, rsqrt_out, sqrt_out,
+};
+use super::{Fixed22, FRAC};
+use crate::Real;
+
+/// `x^2 + y^2 + z^2` of components of at most 2 in magnitude (what `rescale_by_top` leaves):
+/// each square by `mul_bits_small`, the sum (at most 12) without saturation tests; the same
+/// bits as `x * x + y * y + z * z`.
+#[inline(always)]
+pub(super) fn unit_scale(x: Fixed22, y: Fixed22, z: Fixed22) -> Fixed22 {
+    let sq = |c: Fixed22| mul_bits_small(c.to_bits(), c.to_bits());
+    Fixed22::from_bits(sq(x) + sq(y) + sq(z))
+}
+
+/// `sqrt_rsqrt` of a sum of squares from `unit_scale` (in `[1/4, 12]`): the same bits, the
+/// exponent from two comparisons ([`even_top_of_square_sum`]) instead of a leading-zero count.
+#[inline(always)]
+pub(super) fn unit_sqrt_rsqrt(s: Fixed22) -> (Fixed22, Fixed22) {
+    let x = s.to_bits();
+    if x <= 0 {
+        return (Fixed22::ZERO, Fixed22::ZERO);
+    }
+    let v = x as u32;
+    let (m, j, y) = rsqrt_core_at(v, even_top_of_square_sum(v));
+    (
+        Fixed22::from_bits(sqrt_out(m, j, y)),
+        Fixed22::from_bits(rsqrt_out(j, y)),
+    )
+}
+
+/// `rsqrt` of a sum of squares from `unit_scale`: the same bits, as [`unit_sqrt_rsqrt`].
+#[inline(always)]
+pub(super) fn unit_rsqrt(s: Fixed22) -> Fixed22 {
+    let x = s.to_bits();
+    if x <= 0 {
+        return Fixed22::ZERO;
+    }
+    let v = x as u32;
+    let (_, j, y) = rsqrt_core_at(v, even_top_of_square_sum(v));
+    Fixed22::from_bits(rsqrt_out(j, y))
+}
+
+/// `v` scaled by the power of two that brings `top`'s highest set bit (a bound on every
+/// component's magnitude in raw bits: no component's bits reach above it) to bit 21 (bit 22
+/// for bits 30 and 31, the shift right being limited to 8), and that power of two; `(v, 1)`
+/// for `top = 0`. With `top` such a bound no left shift overflows.
+#[inline(always)]
+pub(super) fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed22) {
+    if top == 0 {
+        return (v, Fixed22::ONE);
+    }
+    let (scaled, k) = rescale_by_top_exp(v, top);
+    (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
+}
+
+/// [`rescale_by_top`] for `top > 0`, with the exponent `k` of its power of two `2^-k` (in
+/// `[-8, 21]`) instead of the power itself.
+#[inline(always)]
+pub(super) fn rescale_by_top_exp(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], i32) {
+    let high = 31 - clz(top) as i32; // 0..=31
+    let k = (21 - high).clamp(-8, 21);
+    // Written out (not `map`, which the M0 build turned into a loop through the stack).
+    let [x, y, z] = [v[0].to_bits(), v[1].to_bits(), v[2].to_bits()];
+    let [x, y, z] = if k >= 0 {
+        [x << k, y << k, z << k]
+    } else {
+        let s = -k;
+        [x >> s, y >> s, z >> s]
+    };
+    let scaled = [
+        Fixed22::from_bits(x),
+        Fixed22::from_bits(y),
+        Fixed22::from_bits(z),
+    ];
+    (scaled, k)
+}

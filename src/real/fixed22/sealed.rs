@@ -1,0 +1,178 @@
+//! [`Fixed22`](super::Fixed22)'s crate-internal arithmetic (the sealed trait of
+//! [`Real`](crate::Real)): products and sums without saturation tests where the callers'
+//! bounds make them exact, the normalizations' ratios, the exact products of the polygon
+//! edges near their lines, and SH9's fused dot product. Each is `*`'s and `+`'s bits
+//! wherever its precondition holds (`tests.rs`).
+
+use super::kernels::*;
+use super::normalize::*;
+use super::{Fixed22, FRAC};
+use crate::Real;
+
+impl crate::real::sealed::Sealed for Fixed22 {
+    /// `-r < c < r` for each component as `(c + r) as u32 < 2r - 1` (wrapping: a component
+    /// at `i32::MIN` or `MAX` falls outside for any `r` below 256; `r <= 0`: `false`).
+    #[cfg(any(feature = "polygon", feature = "raster"))]
+    #[inline(always)]
+    fn all_within(v: [Self; 3], r: Self) -> bool {
+        let r = r.to_bits();
+        let span = (2 * r as u32).wrapping_sub(1);
+        let inside = |c: Self| (c.to_bits().wrapping_add(r) as u32).wrapping_sub(1) < span;
+        r > 0 && inside(v[0]) && inside(v[1]) && inside(v[2])
+    }
+    /// Exact products and sums in `i64` (every coordinate below `2^7` in magnitude, as the
+    /// kernels' are: products below `2^58`, sums below `2^60`; larger coordinates: `None`, and
+    /// the caller keeps its rounded products), then one shift that puts the largest magnitude's
+    /// leading bit at bit 22 (`[1, 2)`): truncated, relative `2^-22`. Not inlined: the cold
+    /// path of the polygon edges where `G` is small (a point near an edge's line, a short edge).
+    #[cfg(feature = "polygon")]
+    #[inline(never)]
+    fn cross_dot_scaled(ua: [Self; 3], ub: [Self; 3], d: [Self; 3]) -> Option<([Self; 3], Self)> {
+        const LIM: u32 = 1 << 29;
+        let fits = |v: &[Self; 3]| v.iter().all(|c| c.to_bits().unsigned_abs() < LIM);
+        if !(fits(&ua) && fits(&ub) && fits(&d)) {
+            return None;
+        }
+        let p = |a: Self, b: Self| a.to_bits() as i64 * b.to_bits() as i64;
+        let g = [
+            p(ua[1], d[2]) - p(ua[2], d[1]),
+            p(ua[2], d[0]) - p(ua[0], d[2]),
+            p(ua[0], d[1]) - p(ua[1], d[0]),
+        ];
+        let dot = p(ua[0], ub[0]) + p(ua[1], ub[1]) + p(ua[2], ub[2]);
+        let top = g
+            .iter()
+            .fold(dot.unsigned_abs(), |m, v| m | v.unsigned_abs());
+        if top == 0 {
+            return None;
+        }
+        // Leading bit of `top` at 63 - lz (at most 59); move it to bit 22.
+        let sh = 63 - top.leading_zeros() as i32 - 22;
+        let f = |v: i64| {
+            let b = if sh >= 0 { v >> sh } else { v << -sh };
+            Fixed22::from_bits(b as i32)
+        };
+        Some(([f(g[0]), f(g[1]), f(g[2])], f(dot)))
+    }
+    /// `x 2^-60` to I10F22: `x 2^-38` rounded half up, from the shifted bits (`|x| <= 2^62`
+    /// gives at most `2^24`, 4.0; beyond, saturated).
+    #[inline(always)]
+    fn from_q60(x: i64) -> Self {
+        let bits = ((x >> 37) + 1) >> 1;
+        Fixed22::from_bits(bits.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+    }
+    /// `normalize3`'s unit vector and length, bit for bit, and the ratios in its rescaled
+    /// space: with `v = V 2^-k` (`V` the rescaled vector, `S` its sum of squares and `1/|V|`
+    /// the reciprocal square root the normalization computes anyway), `r / |v| = (r 2^k)/|V|`
+    /// and `sqrt(|v|^2 - r^2)/|v| = sqrt(S - (r 2^k)^2)/|V|`: no division, and `|V|` near 1
+    /// keeps the 22 fractional bits for short vectors (whose `|v|` would lose the shift).
+    /// `r 2^k < |V|` (at most 3.5) once `|v| > r`: no overflow.
+    #[inline(always)]
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)> {
+        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+        if m <= Self::TINY {
+            return None;
+        }
+        let ([x, y, z], k) = rescale_by_top_exp(v, m.to_bits() as u32);
+        let s2 = unit_scale(x, y, z);
+        let (len, inv) = unit_sqrt_rsqrt(s2);
+        let sc = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
+        let u = [sc(x), sc(y), sc(z)];
+        // `len * d` for `d = 2^-k`: `*`'s floor (an arithmetic shift right) or its saturation
+        // to MAX (a shift left of `len < 2^24` by at most 8, then the clamp), the same bits.
+        let len = len.to_bits();
+        let d = Fixed22::from_bits(if k >= 0 {
+            len >> k
+        } else {
+            ((len as u32) << (-k)).min(i32::MAX as u32) as i32
+        });
+        if d <= r {
+            return Some((u, d, Self::ZERO, Self::ZERO));
+        }
+        // 0 <= r < d: `r 2^k` below `|V|`.
+        let rb = r.to_bits();
+        let rs = Fixed22::from_bits(if k >= 0 { rb << k } else { rb >> (-k) });
+        let cs = (s2 - rs * rs).sqrt() * inv;
+        Some((u, d, rs * inv, cs))
+    }
+    /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors below 16, no
+    /// saturation test), the sum (below 512 by the precondition) by wrapping additions: the
+    /// same bits as `Vec3::dot` (whose saturating additions never saturate there). About 40
+    /// instead of 95 instructions on the M0.
+    #[inline(always)]
+    fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
+        let p = |k: usize| mul_bits_small(a[k].to_bits(), b[k].to_bits());
+        Fixed22::from_bits(p(0).wrapping_add(p(1)).wrapping_add(p(2)))
+    }
+    /// `mul_bits_small`: exact `floor(a b / 2^22)`, no saturation test.
+    #[inline(always)]
+    fn mul_small(a: Self, b: Self) -> Self {
+        Fixed22::from_bits(mul_bits_small(a.to_bits(), b.to_bits()))
+    }
+    /// As `dot3_small`: each component a difference of two exact products (below 512 by the
+    /// precondition).
+    #[inline(always)]
+    fn cross3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        let p = |i: usize, j: usize| mul_bits_small(a[i].to_bits(), b[j].to_bits());
+        [
+            Fixed22::from_bits(p(1, 2).wrapping_sub(p(2, 1))),
+            Fixed22::from_bits(p(2, 0).wrapping_sub(p(0, 2))),
+            Fixed22::from_bits(p(0, 1).wrapping_sub(p(1, 0))),
+        ]
+    }
+    /// By `mul_bits_unit` when either triple lies within `(-1, 1]` (one unsigned comparison
+    /// a component), with the other triple's components as `a`: exact `floor(a c
+    /// / 2^22)` that cannot saturate, about 14 instead of 27 Cortex-M0 instructions a product;
+    /// by `*` otherwise. The same bits either way. Inlined with both orders written out:
+    /// about 3.4 KiB of the Cortex-M0 budget image (`opt-level = "s"`, 260 504 of its 262 144
+    /// bytes), where one shared unit path saved 1 KiB and an out-of-line call 4.5 KiB; but
+    /// the RP2040 demo's frame (`opt-level = 3`) was then 0.4 % (shared path) and 1.4 % (call:
+    /// no faster than the saturating products) slower than with this.
+    #[inline(always)]
+    fn mul_each(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        // -1 < c <= 1 for each component (1 itself: an exposure or a model's full value;
+        // not -1, whose product with the most negative value leaves the range): one
+        // unsigned comparison each.
+        let within = |v: [Self; 3]| {
+            let inside = |c: Self| (c.to_bits().wrapping_add((1 << FRAC) - 1) as u32) < 2 << FRAC;
+            inside(v[0]) && inside(v[1]) && inside(v[2])
+        };
+        let unit = |x: [Self; 3], c: [Self; 3]| {
+            let p = |k: usize| Fixed22::from_bits(mul_bits_unit(x[k].to_bits(), c[k].to_bits()));
+            [p(0), p(1), p(2)]
+        };
+        if within(a) {
+            unit(b, a)
+        } else if within(b) {
+            unit(a, b)
+        } else {
+            [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+        }
+    }
+    /// `mul_bits_unit`: exact `floor(a c / 2^22)` without the saturation test (`|c| <= 1`).
+    #[inline(always)]
+    fn mul_unit(a: Self, c: Self) -> Self {
+        Fixed22::from_bits(mul_bits_unit(a.to_bits(), c.to_bits()))
+    }
+    /// One fused dot product per channel (`dot8_split_bits`): every term's exact product
+    /// summed in integers and rounded down once, where `*` and `+` round each of the 8
+    /// products down (up to 8 LSB) and saturate each partial sum. The result is
+    /// `floor(k0 + sum k m)` of the Q22 monomials, saturated: within 1 LSB of their exact
+    /// value. Each monomial is split once for the three channels. 4 `MULS` and no saturation
+    /// test a term: measured in the QEMU budget (see `Sh9Irradiance::irradiance`).
+    #[cfg(feature = "sh9")]
+    #[inline(always)]
+    fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
+        // Written out (the M0 build at opt-level "s" keeps loops, through the stack).
+        let s = |i: usize| split_11(m[i].to_bits());
+        let [s0, s1, s2, s3, s4, s5, s6, s7] = [s(0), s(1), s(2), s(3), s(4), s(5), s(6), s(7)];
+        let mh = [s0.0, s1.0, s2.0, s3.0, s4.0, s5.0, s6.0, s7.0];
+        let ml = [s0.1, s1.1, s2.1, s3.1, s4.1, s5.1, s6.1, s7.1];
+        let ch = |f: fn(&crate::Rgb<Self>) -> Self| {
+            let b = |i: usize| f(&k[i]).to_bits();
+            let rest = [b(1), b(2), b(3), b(4), b(5), b(6), b(7), b(8)];
+            Fixed22::from_bits(dot8_split_bits(b(0), rest, &mh, &ml))
+        };
+        Some(crate::Rgb::new(ch(|c| c.r), ch(|c| c.g), ch(|c| c.b)))
+    }
+}

@@ -1,0 +1,222 @@
+//! The tests of [`Fixed22`](super::Fixed22)'s products and normalizations against the
+//! type's own saturating arithmetic, bit for bit (the kernels' own tests are in
+//! `kernels.rs`).
+
+use super::normalize::rescale_by_top;
+use super::*;
+
+/// The product by a factor of at most 1 is `*`'s bits: every `a` on a stride plus the
+/// edges against every `c` edge and a stride of `c` over `[-2^22, 2^22]`.
+#[test]
+fn unit_factor_products_are_bit_identical() {
+    let one = 1i32 << 22;
+    let edges = [-one, -one + 1, -1, 0, 1, 0xFFFF, 0x10000, one - 1, one];
+    let mut a = i32::MIN as i64;
+    while a <= i32::MAX as i64 {
+        for &a in &[
+            a as i32,
+            (a as i32).wrapping_add(1),
+            i32::MAX,
+            0xFFFF,
+            -0x10000,
+        ] {
+            for c in edges.into_iter().chain((-one..=one).step_by(9973)) {
+                if a == i32::MIN && c == -one {
+                    continue;
+                }
+                assert_eq!(mul_bits_unit(a, c), mul_bits(a, c), "{a} * {c}");
+            }
+        }
+        a += 1_000_003;
+    }
+}
+
+/// `mul_each` is `*` channel by channel, whichever side lies within `(-1, 1]` (or
+/// neither): triples drawn from the edges of that range and of the type (1 itself, `MIN`,
+/// `MAX`) and random values of every magnitude, both ways round.
+#[test]
+fn channel_products_are_bit_identical() {
+    use crate::real::sealed::Sealed;
+    let one = 1i32 << 22;
+    let edges = [
+        i32::MIN,
+        i32::MIN + 1,
+        -one - 1,
+        -one,
+        -one + 1,
+        -1,
+        0,
+        1,
+        one - 1,
+        one,
+        one + 1,
+        i32::MAX,
+    ];
+    let mut next = crate::test_rng::xorshift32(0x0BAD_5EED);
+    let mut pick = |k: u32| -> Fixed22 {
+        let r = next();
+        Fixed22::from_bits(match k % 3 {
+            0 => edges[(r % edges.len() as u32) as usize],
+            // Within (-1, 1), near its edges or anywhere in it.
+            1 => (r as i32) >> 9,
+            _ => (r as i32) >> (r % 31),
+        })
+    };
+    let mut within = 0;
+    for i in 0..300_000u32 {
+        let a = [pick(i), pick(i / 3), pick(i / 9)];
+        let b = [pick(i / 27), pick(i / 81), pick(i / 243)];
+        let want = [a[0] * b[0], a[1] * b[1], a[2] * b[2]];
+        assert_eq!(<Fixed22 as Sealed>::mul_each(a, b), want, "{a:?} * {b:?}");
+        assert_eq!(<Fixed22 as Sealed>::mul_each(b, a), want, "{b:?} * {a:?}");
+        within += usize::from(a.iter().all(|c| c.to_bits().unsigned_abs() < 1 << 22));
+    }
+    // Both paths taken often.
+    assert!(within > 10_000 && within < 290_000, "{within}");
+}
+
+/// The fused dot product is exactly `floor(k0 + sum k m / 2^22)`, saturated: random `k`
+/// of every magnitude (the full `i32` range included), factors over their whole range
+/// `|m| <= 3 2^21` (edges included), against `i64` arithmetic.
+#[test]
+#[cfg(feature = "sh9")]
+fn fused_dot_is_exact() {
+    let mut next = crate::test_rng::xorshift32(0x9E37_79B9);
+    let lim = 3 << 21;
+    for n in 0..300_000 {
+        let shift = next() % 32;
+        let k: [i32; 8] = core::array::from_fn(|_| (next() as i32) >> shift);
+        let k0 = (next() as i32) >> (next() % 32);
+        let m: [i32; 8] = core::array::from_fn(|_| match (n % 4, next() % 8) {
+            (0, 0) => lim,
+            (0, 1) => -lim,
+            (1, _) => [lim, -lim][(next() % 2) as usize],
+            _ => (next() % (2 * lim as u32 + 1)) as i32 - lim,
+        });
+        let (mut mh, mut ml) = ([0; 8], [0; 8]);
+        for i in 0..8 {
+            (mh[i], ml[i]) = split_11(m[i]);
+        }
+        let sum: i64 = (0..8).map(|i| i64::from(k[i]) * i64::from(m[i])).sum();
+        let want = (i64::from(k0) + (sum >> 22)).clamp(i32::MIN.into(), i32::MAX.into());
+        assert_eq!(
+            i64::from(dot8_split_bits(k0, k, &mh, &ml)),
+            want,
+            "{k0} {k:?} {m:?}"
+        );
+    }
+}
+
+/// `recip_core(d)` is `floor(2^63 / d)` or up to 3 below it (what `div_bits` and
+/// `atan2_bits` rely on): every `d` with `step = 1` (`-- --ignored`), a stride otherwise.
+fn recip_core_within(step: usize) {
+    let check = |d: u32| {
+        let exact = (1u64 << 63) / u64::from(d);
+        let y = u64::from(recip_core(d));
+        assert!(y <= exact && exact - y <= 3, "{d}: {y} vs {exact}");
+    };
+    for d in ((1u32 << 31)..=u32::MAX).step_by(step) {
+        check(d);
+    }
+    for k in 0..16u32 {
+        let edge = (1u32 << 31) + (k << 27);
+        for d in edge.saturating_sub(4096).max(1 << 31)..=edge.saturating_add(4096) {
+            check(d);
+        }
+    }
+    check(u32::MAX);
+}
+
+#[test]
+fn recip_core_is_within_three_units_below() {
+    recip_core_within(97);
+}
+
+#[test]
+#[ignore = "every d in [2^31, 2^32): run with `-- --ignored`"]
+fn recip_core_is_within_three_units_below_everywhere() {
+    recip_core_within(1);
+}
+
+/// `mul_bits_small` against `mul_bits` (both orders): every `a` in `[-lim, lim]` on a
+/// stride of `step`, against the range's edges, the halves' edges and `a`'s fractions.
+fn small_products_on_a_stride(lim: i32, step: i32) {
+    let half = lim / 2 + 1;
+    let edges = [
+        -lim,
+        -lim + 1,
+        -half,
+        -1,
+        0,
+        1,
+        0xFFFF,
+        0x10000,
+        half,
+        lim - 1,
+        lim,
+    ];
+    let mut a = -lim;
+    while a <= lim {
+        for &b in edges.iter().chain([a / 3, -a / 7, 12_345].iter()) {
+            assert_eq!(mul_bits_small(a, b), mul_bits(a, b), "{a} * {b}");
+            assert_eq!(mul_bits_small(b, a), mul_bits(b, a), "{b} * {a}");
+        }
+        a += step;
+    }
+}
+
+/// The normalizations' small products are `*`'s bits, and the sums `+`'s: every
+/// `|a|, |b| <= 2^23` on a stride plus the edges, and the normalizations of 200 000 random
+/// vectors of every magnitude against the same formula in the type's own `*` and `+`.
+#[test]
+fn small_products_and_normalizations_are_bit_identical() {
+    small_products_on_a_stride(1 << 23, 997);
+    let mut next = crate::test_rng::xorshift32(0x2545_F491);
+    for _ in 0..200_000 {
+        let shift = next() % 31;
+        let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
+        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+        let want = if m <= Fixed22::TINY {
+            None
+        } else {
+            let ([x, y, z], d) = rescale_by_top(v, m.to_bits() as u32);
+            let (len, inv) = (x * x + y * y + z * z).sqrt_rsqrt();
+            Some(([x * inv, y * inv, z * inv], len * d))
+        };
+        assert_eq!(Fixed22::normalize3(v), want, "{v:?}");
+        assert_eq!(Fixed22::unit3(v), want.map(|(u, _)| u), "{v:?}");
+    }
+}
+
+/// The small products hold to their whole precondition, factors below 16 (`2^26` raw):
+/// every `a` on a stride against the edges and a stride of `b`, and the sealed
+/// `dot3_small`/`cross3_small` on 200 000 random offsets of the polygon edge terms
+/// (`ua`, `ub` within 8, `d` within 16: `polygon::edge::offset_products`) against
+/// `Vec3::dot` and `Vec3::cross`, bit for bit.
+#[test]
+fn small_products_hold_for_factors_below_16() {
+    small_products_on_a_stride((1 << 26) - 1, 9_973);
+    let mut next = crate::test_rng::xorshift32(0x1234_5677);
+    // Raw values in [-2^(22 + k), 2^(22 + k)): below 2^k, of every magnitude.
+    let mut coord = |k: u32| {
+        let extra = next() % 20;
+        Fixed22::from_bits((next() as i32) >> (9 - k + extra))
+    };
+    for _ in 0..200_000 {
+        let ua = crate::Vec3::new(coord(3), coord(3), coord(3));
+        let ub = crate::Vec3::new(coord(3), coord(3), coord(3));
+        let d = crate::Vec3::new(coord(4), coord(4), coord(4));
+        let arr = |v: crate::Vec3<Fixed22>| [v.x, v.y, v.z];
+        let c = ua.cross(d);
+        assert_eq!(
+            <Fixed22 as super::super::sealed::Sealed>::cross3_small(arr(ua), arr(d)),
+            arr(c),
+            "{ua:?} x {d:?}"
+        );
+        assert_eq!(
+            <Fixed22 as super::super::sealed::Sealed>::dot3_small(arr(ua), arr(ub)),
+            ua.dot(ub),
+            "{ua:?} . {ub:?}"
+        );
+    }
+}

@@ -1,0 +1,252 @@
+//! The float backends, `f64` (the reference) and `f32`, from one macro over their math
+//! functions (`libm`, the hardware square root of [`hw`](super::hw), the crate's polynomial
+//! `atan2` and arc ratio), and the lean normalization they share ([`normalize3_lean`]: the
+//! squared length directly, rescaled by a power of two only when it under- or overflows).
+
+use super::Real;
+
+/// `true` if every component is finite.
+#[inline(always)]
+fn finite3<T: Real>(v: [T; 3]) -> bool {
+    v[0].is_finite() && v[1].is_finite() && v[2].is_finite()
+}
+
+/// The power-of-two bounds of [`normalize3_lean`] for one float type: the squared lengths
+/// `[lo, hi]` it takes as they are, and the scale `up` (its inverse `down`) of the cold path.
+#[derive(Clone, Copy)]
+pub(crate) struct LeanBounds<T> {
+    /// Below it, squares of the smaller components may be subnormal with an absolute rounding
+    /// that is no longer negligible against the sum (or the sum underflowed).
+    lo: T,
+    /// The largest finite value: above it the sum overflowed.
+    hi: T,
+    /// Brings any vector whose squared length is below `lo` (but not zero) into `[lo, hi]`.
+    up: T,
+    /// `1/up`: brings any finite vector whose squared length overflowed into `[lo, hi]`.
+    down: T,
+}
+
+/// f32: `lo = 2^-100`, `up = 2^100`. A squared length below `lo` with a nonzero component has
+/// its largest component `m` in `[2^-149, 2^-50)`, so `m up` is in `[2^-49, 2^50)` and the new
+/// squared length in `[2^-98, 3 2^100]`; one that overflowed has `m` in `[2^63, 2^128)`, and
+/// `m down` is in `[2^-37, 2^28)`. In `[lo, hi]` a subnormal square of a smaller component is
+/// off by at most `2^-150`, `2^-50` of the sum.
+const LEAN_F32: LeanBounds<f32> = LeanBounds {
+    lo: f32::from_bits((127 - 100) << 23),
+    hi: f32::MAX,
+    up: f32::from_bits((127 + 100) << 23),
+    down: f32::from_bits((127 - 100) << 23),
+};
+
+/// f64: `lo = 2^-960`, `up = 2^600` (the same argument: `m < 2^-480` goes to `[2^-474, 2^120)`,
+/// `m >= 2^511` to `[2^-89, 2^424)`; a subnormal square is off by at most `2^-1075`).
+const LEAN_F64: LeanBounds<f64> = LeanBounds {
+    lo: f64::from_bits((1023 - 960) << 52),
+    hi: f64::MAX,
+    up: f64::from_bits((1023 + 600) << 52),
+    down: f64::from_bits((1023 - 600) << 52),
+};
+
+/// The lean normalization of the float types (see [`Real::normalize3`]): `(v / |v|, |v|)` from
+/// the squared length `s2` directly when it lies in `[lo, hi]`; otherwise (a cold path, taken
+/// only by vectors whose squared length under- or overflows, and by zero, infinite or NaN ones)
+/// `v` is scaled by the power of two `up` or `down` first, exactly, and the length scaled back.
+/// `root(s2)` returns `(sqrt(s2), 1/sqrt(s2))` for a normal positive `s2`.
+///
+/// Accuracy: each component within a few ULPs of the exact quotient (3 roundings in the
+/// squared length, 1 in the root, 1 in the reciprocal, 1 in the product); the length within
+/// 2 ULPs. Cost on the hot path: 3 products and 2 additions, 2 comparisons, `root`, 3 products
+/// (f32 on the Cortex-M4F: one `VSQRT.F32` and one `VDIV.F32`).
+#[inline(always)]
+pub(crate) fn normalize3_lean<T: Real>(
+    v: [T; 3],
+    k: LeanBounds<T>,
+    root: impl Fn(T) -> (T, T),
+) -> Option<([T; 3], T)> {
+    let s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if s2 >= k.lo && s2 <= k.hi {
+        let (len, inv) = root(s2);
+        Some(([v[0] * inv, v[1] * inv, v[2] * inv], len))
+    } else {
+        normalize3_cold(v[0], v[1], v[2], k, root)
+    }
+}
+
+/// The cold path of [`normalize3_lean`]: `None` for a zero or non-finite vector, else the
+/// vector scaled by a power of two into the hot range.
+#[cold]
+#[inline(never)]
+fn normalize3_cold<T: Real>(
+    x: T,
+    y: T,
+    z: T,
+    k: LeanBounds<T>,
+    root: impl Fn(T) -> (T, T),
+) -> Option<([T; 3], T)> {
+    // The components one by one, not as an array: an array argument is passed in memory, and
+    // the hot path would store it before its test.
+    let v = [x, y, z];
+    if !finite3(v) {
+        return None;
+    }
+    let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
+    if !(m > T::ZERO) {
+        return None;
+    }
+    let (f, back) = if m < T::ONE {
+        (k.up, k.down)
+    } else {
+        (k.down, k.up)
+    };
+    let w = [v[0] * f, v[1] * f, v[2] * f];
+    let s2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    // Always true by the bounds' argument (see `LEAN_F32`); kept so that no input can reach
+    // `root` outside its domain.
+    if !(s2 >= k.lo && s2 <= k.hi) {
+        return None;
+    }
+    let (len, inv) = root(s2);
+    Some(([w[0] * inv, w[1] * inv, w[2] * inv], len * back))
+}
+
+#[cfg(not(feature = "libm"))]
+compile_error!(
+    "arealight needs a math backend for f32/f64: enable the `libm` feature \
+     (it is on by default; with `default-features = false` add `features = [\"libm\"]`)"
+);
+
+macro_rules! impl_real_float {
+    ($t:ty, $sqrt:path, $atan2:path, $ratio:path, $sin:path, $cos:path, $exp:path, $ln:path, $tiny:expr, $lean:expr) => {
+        impl Real for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const TWO: Self = 2.0;
+            const HALF: Self = 0.5;
+            const PI: Self = core::f64::consts::PI as $t;
+            const FRAC_PI_2: Self = core::f64::consts::FRAC_PI_2 as $t;
+            const TAU: Self = core::f64::consts::TAU as $t;
+            const FRAC_1_PI: Self = core::f64::consts::FRAC_1_PI as $t;
+            const FRAC_1_TAU: Self = (0.5 * core::f64::consts::FRAC_1_PI) as $t;
+            const EPSILON: Self = <$t>::EPSILON;
+            const TINY: Self = $tiny;
+
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn from_u32(x: u32) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                if self < 0.0 {
+                    -self
+                } else {
+                    self
+                }
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                if self > 0.0 {
+                    $sqrt(self)
+                } else {
+                    0.0
+                }
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                $atan2(self, x)
+            }
+            #[inline(always)]
+            fn arc_ratio(self) -> Option<Self> {
+                $ratio(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                $sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                $cos(self)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                $exp(self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                $ln(self)
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                <$t>::is_finite(self)
+            }
+            /// In the type's own arithmetic (scaling by a power of two is exact).
+            #[inline(always)]
+            fn to_fixed_i32(self, frac: u32) -> i32 {
+                let v = self * (1u32 << frac.min(30)) as $t + 0.5;
+                let t = v as i32; // saturating, NaN -> 0
+                if (t as $t) > v {
+                    t.saturating_sub(1)
+                } else {
+                    t
+                }
+            }
+            #[inline(always)]
+            fn from_fixed_i32(x: i32, frac: u32) -> Self {
+                x as $t * (1.0 / (1u32 << frac.min(30)) as $t)
+            }
+            /// In the type's own arithmetic: `as` saturates (and maps NaN to 0).
+            #[inline(always)]
+            fn unit_to_u32(self, max: u32) -> u32 {
+                ((self.clamp01() * max as $t + 0.5) as u32).min(max)
+            }
+            /// The lean form (`normalize3_lean`): squared length, one square root, one
+            /// division, three products; a power-of-two rescaling only on the cold path.
+            #[inline(always)]
+            fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
+                normalize3_lean(v, $lean, |s2| {
+                    let r = $sqrt(s2);
+                    (r, 1.0 / r)
+                })
+            }
+            /// [`Real::normalize3`] without the length (the same operations).
+            #[inline(always)]
+            fn unit3(v: [Self; 3]) -> Option<[Self; 3]> {
+                Self::normalize3(v).map(|(u, _)| u)
+            }
+        }
+    };
+}
+
+// TINY: about the square root of the smallest normal, so squares of lengths above it are normal.
+impl_real_float!(
+    f64,
+    libm::sqrt,
+    libm::atan2,
+    super::arc_ratio::no_arc_ratio,
+    libm::sin,
+    libm::cos,
+    libm::exp,
+    libm::log,
+    1.0e-150,
+    LEAN_F64
+);
+// The hardware square root where the target has one (`hw`), else libm's: the same bits.
+impl_real_float!(
+    f32,
+    super::hw::sqrtf,
+    super::f32_math::atan2,
+    super::arc_ratio::arc_ratio_f32,
+    libm::sinf,
+    libm::cosf,
+    libm::expf,
+    libm::logf,
+    1.0e-18,
+    LEAN_F32
+);
