@@ -468,6 +468,26 @@ mod polygon_impls {
                 black()
             }
         }
+        /// Both terms with `p`'s checks and its test against the polygon's plane done once
+        /// (the same bits as the two calls).
+        #[cfg(feature = "phong")]
+        #[inline]
+        fn diffuse_and_phong(
+            &self,
+            lobe: &PhongLobe<T>,
+            p: Vec3<T>,
+            n: UnitVec3<T>,
+            r: UnitVec3<T>,
+        ) -> (Rgb<T>, Rgb<T>) {
+            if p.check_position("p").is_err() {
+                return (black(), black());
+            }
+            let plane = self.in_plane(p);
+            (
+                grey(self.lambert_at(p, n, plane).unwrap_or(T::ZERO)),
+                grey(self.phong_at(lobe, p, r, plane).unwrap_or(T::ZERO)),
+            )
+        }
     }
 }
 

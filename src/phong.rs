@@ -473,11 +473,25 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         r: impl Direction<T>,
     ) -> Result<T, Error> {
         p.check_position("p")?;
+        self.phong_at(lobe, p, r, self.in_plane(p))
+    }
+
+    /// [`PolygonLight::try_phong`] for a `p` within the coordinate limit whose
+    /// [`PolygonLight::in_plane`] test is `plane` (computed once for both terms by the
+    /// polygon's [`Illuminant::diffuse_and_phong`](crate::Illuminant::diffuse_and_phong)).
+    #[inline]
+    pub(crate) fn phong_at(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+        plane: bool,
+    ) -> Result<T, Error> {
         let ru = r.try_unit("r")?;
         let r = ru.into_inner();
         let m = lobe.m;
         let r_min = near_limit::<T>(phong_near_log2(m));
-        if self.in_plane(p) {
+        if plane {
             self.resolved_in_plane(p, r_min)?;
             return Ok(T::ZERO);
         }

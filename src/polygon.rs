@@ -268,11 +268,24 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `near_limit` in this module: the directions are not known to 1/1024 there).
     pub fn try_lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> Result<T, Error> {
         p.check_position("p")?;
+        self.lambert_at(p, n, self.in_plane(p))
+    }
+
+    /// [`PolygonLight::try_lambert`] for a `p` within the coordinate limit whose
+    /// [`PolygonLight::in_plane`] test is `plane` (computed once for both terms by the
+    /// polygon's [`Illuminant::diffuse_and_phong`](crate::Illuminant::diffuse_and_phong)).
+    #[inline]
+    pub(crate) fn lambert_at(
+        &self,
+        p: Vec3<T>,
+        n: impl Direction<T>,
+        plane: bool,
+    ) -> Result<T, Error> {
         let n = n.try_unit("n")?.into_inner();
         if T::RESOLUTION > T::ZERO {
-            return lambert_fixed(&self.verts, self.normal, p, n);
+            return lambert_fixed(&self.verts, self.normal, p, n, plane);
         }
-        if self.in_plane(p) {
+        if plane {
             return Ok(T::ZERO);
         }
         let mut sum = T::ZERO;
@@ -438,9 +451,10 @@ fn lambert_fixed<T: Real>(
     normal: Vec3<T>,
     p: Vec3<T>,
     n: Vec3<T>,
+    plane: bool,
 ) -> Result<T, Error> {
     let r_min = near_limit::<T>(LAMBERT_NEAR_LOG2);
-    if in_plane(verts, normal, p) {
+    if plane {
         if over_face_or_near(verts, normal, p, r_min.to_f64()) {
             return Err(Error::Unresolved("p"));
         }

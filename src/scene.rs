@@ -430,6 +430,12 @@ impl<T: Real, const N: usize> Entry<T, N> {
         n: UnitVec3<T>,
         r: UnitVec3<T>,
     ) -> (Rgb<T>, Rgb<T>) {
+        let both = |d: Rgb<T>, s: Rgb<T>, f: Option<T>| {
+            (
+                shaped(mul_rgb(d, self.colour), f),
+                shaped(mul_rgb(s, self.colour), f),
+            )
+        };
         #[cfg(feature = "cap")]
         if let SceneLight::Sphere(l) = &self.light {
             let f = self.factor(p);
@@ -437,11 +443,18 @@ impl<T: Real, const N: usize> Entry<T, N> {
                 return (Rgb::splat(T::ZERO), Rgb::splat(T::ZERO));
             }
             let (d, s) = Illuminant::diffuse_and_phong(l, lobe, p, n, r);
-            return (
-                shaped(mul_rgb(d, self.colour), f),
-                shaped(mul_rgb(s, self.colour), f),
-            );
+            return both(d, s, f);
         }
+        #[cfg(all(feature = "polygon", feature = "phong"))]
+        if let SceneLight::Polygon(l) = &self.light {
+            let f = self.factor(p);
+            if f.is_some_and(|f| !(f > T::ZERO)) {
+                return (Rgb::splat(T::ZERO), Rgb::splat(T::ZERO));
+            }
+            let (d, s) = Illuminant::diffuse_and_phong(l, lobe, p, n, r);
+            return both(d, s, f);
+        }
+        let _ = both;
         (self.diffuse(p, n), self.phong(lobe, p, r))
     }
 }

@@ -338,3 +338,59 @@ fn culled_and_unculled_renders_are_identical() {
     check::<f32>();
     check::<Fixed22>();
 }
+
+/// A polygon light's `diffuse_and_phong` (one range check and one test against its plane for
+/// both terms) is the two calls bit for bit: random points around a quad, points in its plane
+/// over and beside the face, near its vertices (fixed point: `Unresolved`, 0 from both), and
+/// beyond the fixed-point coordinate limit; even and odd exponents.
+fn polygon_terms_in_one_call<T: Real>(seed: u64) {
+    let quad = [
+        v3::<T>(-0.5, -0.5, 1.0),
+        v3(0.5, -0.5, 1.0),
+        v3(0.5, 0.5, 1.2),
+        v3(-0.5, 0.5, 1.2),
+    ];
+    let light = PolygonLight::<T, 4>::new(&quad).unwrap();
+    let mut rng = Rng::new(seed);
+    let mut points: Vec<V3> = (0..3000)
+        .map(|_| scale(rng.dir(), 2.0 * rng.unit()))
+        .collect();
+    // In the plane (z = 1 + 0.2 (y + 0.5)), over the face and beside it.
+    for &(x, y) in &[(0.0, 0.0), (0.2, -0.3), (1.5, 0.0), (0.0, 2.0), (-3.0, 0.5)] {
+        points.push([x, y, 1.0 + 0.2 * (y + 0.5)]);
+    }
+    // Near a vertex and an edge, and beyond the coordinate limit of fixed point.
+    points.extend([
+        [-0.5 + 1e-6, -0.5, 1.0 - 1e-6],
+        [0.0, -0.5 - 1e-6, 0.99],
+        [5.0, 0.0, 0.0],
+        [0.0, -4.5, 2.0],
+    ]);
+    let lobes = [16, 17, 48].map(|m| PhongLobe::<T>::new(m).unwrap());
+    let mut nonzero = 0;
+    for (i, &p) in points.iter().enumerate() {
+        let (n, r) = (u::<T>(rng.dir()), u::<T>(rng.dir()));
+        let lobe = &lobes[i % lobes.len()];
+        let p = v::<T>(p);
+        let (d, s) = Illuminant::diffuse_and_phong(&light, lobe, p, n, r);
+        assert_eq!(
+            d.to_f64(),
+            Illuminant::diffuse(&light, p, n).to_f64(),
+            "{p:?}"
+        );
+        assert_eq!(
+            s.to_f64(),
+            Illuminant::phong(&light, lobe, p, r).to_f64(),
+            "{p:?}"
+        );
+        nonzero += usize::from(d.to_f64()[0] > 0.0 && s.to_f64()[0] > 0.0);
+    }
+    assert!(nonzero > 100, "{nonzero}");
+}
+
+#[test]
+fn a_polygon_light_shades_both_terms_in_one_call_bit_for_bit() {
+    polygon_terms_in_one_call::<f64>(11);
+    polygon_terms_in_one_call::<f32>(12);
+    polygon_terms_in_one_call::<Fixed22>(13);
+}
