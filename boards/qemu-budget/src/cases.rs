@@ -65,7 +65,8 @@ pub fn supports(backend: &str, model: &str) -> bool {
     backend != "fixed" || FIXED_MODELS.contains(&model)
 }
 
-const fn str_eq(a: &str, b: &str) -> bool {
+/// `a == b` for strings, usable in constants (the model lists, `QEMU_BUDGET_PART`).
+pub(crate) const fn str_eq(a: &str, b: &str) -> bool {
     let (a, b) = (a.as_bytes(), b.as_bytes());
     if a.len() != b.len() {
         return false;

@@ -258,21 +258,10 @@ const RUN_EXTRAS: bool = part_is("extras");
 
 /// Whether the part `name` runs (every part without `QEMU_BUDGET_PART`).
 const fn part_is(name: &str) -> bool {
-    let Some(part) = PART else {
-        return true;
-    };
-    let (a, b) = (part.as_bytes(), name.as_bytes());
-    if a.len() != b.len() {
-        return false;
+    match PART {
+        None => true,
+        Some(part) => cases::str_eq(part, name),
     }
-    let mut i = 0;
-    while i < a.len() {
-        if a[i] != b[i] {
-            return false;
-        }
-        i += 1;
-    }
-    true
 }
 
 /// Whether case `id` runs under the profiling filter.
