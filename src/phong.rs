@@ -602,10 +602,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// [`WorldPolygonLight`](crate::world::WorldPolygonLight) scales its own ball with the
     /// polygon).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 13 696 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 13 448 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 933 (1 892 without the
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 941 (1 933 before the plane
+    /// test moved ahead of `r`'s normalization, 1 892 without the
     /// ball's test, which that case fails; 1 943 with the step's integers converted to floats
     /// at every step). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond
     /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is

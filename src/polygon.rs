@@ -307,9 +307,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// 2 dot products, 1 sqrt, 1 atan2, 1 division (no per-vertex normalization); on f32 with
     /// an FPU, an edge within a right angle 1 cross product, 4 dot products, 1 sqrt,
     /// 1 division and a degree-9 polynomial instead ([`Real::arc_ratio`]); per horizon
-    /// crossing: a few multiply-adds. Measured on a quad (QEMU, median): 692 Cortex-M4F
-    /// instructions in f32 (920 with the arc tangent), 4 932 Cortex-M0 instructions in
-    /// `Fixed22` (5 073 with the edge term's last two products saturating, 6 325 with the
+    /// crossing: a few multiply-adds. Measured on a quad (QEMU, median): 703 Cortex-M4F
+    /// instructions in f32 (692 before the plane test moved ahead of the normal's normalization
+    /// to be shared with the Phong term, 920 with the arc tangent), 4 929 Cortex-M0 instructions
+    /// in `Fixed22` (5 073 with the edge term's last two products saturating, 6 325 with the
     /// offsets' products saturating too: `polygon::edge::offset_products`).
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the
     /// polygon's plane (fixed point: 0 too where [`PolygonLight::try_lambert`] reports

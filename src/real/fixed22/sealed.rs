@@ -124,7 +124,8 @@ impl crate::real::sealed::Sealed for Fixed22 {
     /// a component), with the other triple's components as `a`: exact `floor(a c
     /// / 2^22)` that cannot saturate, about 14 instead of 27 Cortex-M0 instructions a product;
     /// by `*` otherwise. The same bits either way. Inlined with both orders written out:
-    /// about 3.4 KiB of the Cortex-M0 budget image (`opt-level = "s"`, 260 504 of its 262 144
+    /// about 3.4 KiB of the Cortex-M0 budget image (`opt-level = "s"`; when it was one image,
+    /// 260 504 of the micro:bit's 262 144
     /// bytes), where one shared unit path saved 1 KiB and an out-of-line call 4.5 KiB; but
     /// the RP2040 demo's frame (`opt-level = 3`) was then 0.4 % (shared path) and 1.4 % (call:
     /// no faster than the saturating products) slower than with this.
