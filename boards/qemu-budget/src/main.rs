@@ -47,7 +47,10 @@
 //!
 //! For profiling, a build with the environment variable `QEMU_BUDGET_ONLY` set to a
 //! comma-separated list of model ids (or `demo_shade`) runs only those cases (no alternatives,
-//! no scene); the budget never sets it.
+//! no scene); the budget never sets it. `QEMU_BUDGET_PART` (`models` or `extras`, also at
+//! build time) leaves out the other part's cases and their code: the budget builds the
+//! Cortex-M0 image as those two parts, each of which fits the micro:bit's 256 KB (see
+//! [`PART`]).
 //!
 //! `host-sim/tests/qemu_budget.rs` builds it, runs it and checks every line.
 //!
