@@ -430,32 +430,37 @@ impl<T: Real, const N: usize> Entry<T, N> {
         n: UnitVec3<T>,
         r: UnitVec3<T>,
     ) -> (Rgb<T>, Rgb<T>) {
-        let both = |d: Rgb<T>, s: Rgb<T>, f: Option<T>| {
-            (
-                shaped(mul_rgb(d, self.colour), f),
-                shaped(mul_rgb(s, self.colour), f),
-            )
-        };
-        #[cfg(feature = "cap")]
-        if let SceneLight::Sphere(l) = &self.light {
-            let f = self.factor(p);
-            if f.is_some_and(|f| !(f > T::ZERO)) {
-                return (Rgb::splat(T::ZERO), Rgb::splat(T::ZERO));
-            }
-            let (d, s) = Illuminant::diffuse_and_phong(l, lobe, p, n, r);
-            return both(d, s, f);
+        match &self.light {
+            #[cfg(feature = "cap")]
+            SceneLight::Sphere(l) => self.both_terms(l, lobe, p, n, r),
+            #[cfg(all(feature = "polygon", feature = "phong"))]
+            SceneLight::Polygon(l) => self.both_terms(l, lobe, p, n, r),
+            _ => (self.diffuse(p, n), self.phong(lobe, p, r)),
         }
-        #[cfg(all(feature = "polygon", feature = "phong"))]
-        if let SceneLight::Polygon(l) = &self.light {
-            let f = self.factor(p);
-            if f.is_some_and(|f| !(f > T::ZERO)) {
-                return (Rgb::splat(T::ZERO), Rgb::splat(T::ZERO));
-            }
-            let (d, s) = Illuminant::diffuse_and_phong(l, lobe, p, n, r);
-            return both(d, s, f);
+    }
+
+    /// [`Entry::diffuse_and_phong`] for a light whose own [`Illuminant::diffuse_and_phong`]
+    /// shares work between its terms (a sphere's cap, a polygon's plane test): the beam factor
+    /// once, then the light's two terms in one call, each times the colour.
+    #[cfg(any(feature = "cap", all(feature = "polygon", feature = "phong")))]
+    #[inline(always)]
+    fn both_terms<L: Illuminant<T>>(
+        &self,
+        l: &L,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        let f = self.factor(p);
+        if f.is_some_and(|f| !(f > T::ZERO)) {
+            return (Rgb::splat(T::ZERO), Rgb::splat(T::ZERO));
         }
-        let _ = both;
-        (self.diffuse(p, n), self.phong(lobe, p, r))
+        let (d, s) = Illuminant::diffuse_and_phong(l, lobe, p, n, r);
+        (
+            shaped(mul_rgb(d, self.colour), f),
+            shaped(mul_rgb(s, self.colour), f),
+        )
     }
 }
 
