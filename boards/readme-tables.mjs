@@ -15,6 +15,7 @@
 //   budget           target/budget/budget-table.md    cargo run --release -p host-sim -- budget --out target/budget
 //                                                     (after cargo test -p host-sim --test qemu_budget)
 //   budget-unit      target/budget/budget-unit.md     the same command (the calls with a UnitVec3)
+//   budget-world     target/budget/budget-world.md    the same command (the world-coordinate lights)
 //   sizes            boards/size-probe/sizes.md       boards/size-probe/measure.sh boards/size-probe/sizes.md
 //   scene-budget     target/scene-budget/demo-rp2040-answer.md
 //   scene-checks     target/scene-budget/checks.md    .ci/run's scene budget step (host-sim budget

@@ -57,14 +57,36 @@
 //!
 //! ## Cost
 //!
-//! Per sample: three 64-bit subtractions per point of the light, one leading-zero count and a
-//! shift per coordinate, one conversion per coordinate (fixed point: a shift and a rounding;
-//! f32: an integer-to-float conversion and a product), then the light's model at `p = 0`, the
-//! plain model's cost. A polygon's Phong terms also scale the polygon's ball (its centre as
-//! one more point, its radius as one more value) for the proof of a negligible term
-//! (`polygon/negligible.rs`). Not yet counted on the targets: the QEMU budget image for the Cortex-M0
-//! has 940 bytes of its 256 KiB map left (`llvm-size -A`); adding the world lights' cases there
-//! is open work.
+//! Per sample: the light's points minus `p` (three 64-bit subtractions each, taken twice:
+//! once for the OR of their magnitudes, whose one leading-zero count gives the shift, once to
+//! convert them), one conversion per coordinate with the shift folded in (fixed point: a
+//! shift of the 32-bit halves and a rounding; f32: the FPU's 32-bit integer conversion with a
+//! sticky bit, `real::i64_to_f32`, and a product by a power of two; no 64-bit shift
+//! anywhere), then the light's model at `p = 0`, the plain model's cost. A polygon's Phong
+//! terms also scale the polygon's ball (its centre as one more point, its radius as one more
+//! value) for the proof of a negligible term (`polygon/negligible.rs`). The local polygon is
+//! built where the model runs on it (no copy of it).
+//!
+//! Measured (exact instructions per call, the median of the QEMU budget's 16 inputs:
+//! `cargo test -p host-sim --test qemu_budget`, its `W` lines, then `host-sim budget`): each
+//! world case is its plain case's light 64 times as large and 1000 units from the origin
+//! (`boards/qemu-budget/src/world_cases.rs`), every answer bit for bit the plain call's.
+//!
+//! <!-- BEGIN budget-world: target/budget/budget-world.md -->
+//! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
+//! |---|---:|---:|---:|---:|---:|---:|
+//! | `sphere_lambert` | 109 | 239 | 1181 | 1380 | 940 | 1069 |
+//! | `sphere_lambert_hermite` | 117 | 248 | 1172 | 1377 | 930 | 1074 |
+//! | `polygon_lambert` | 703 | 1304 | 4929 | 5539 | 4004 | 4409 |
+//! | `phong_sphere` | 493 | 616 | 5762 | 5930 | 4425 | 4545 |
+//! | `phong_polygon` | 1941 | 2678 | 13448 | 14245 | 9096 | 9346 |
+//! <!-- END budget-world -->
+//!
+//! When these rows were first counted, the differences were copied, over the polygon's whole
+//! capacity (8 vertices for a quad), and shifted in 64 bits, f32 converted them with
+//! `__aeabi_l2f`, and the local polygon was built apart and copied into place: `polygon_lambert`
+//! took 2 147 M4F f32 instructions and 7 254 M0 `Fixed22` ones, `sphere_lambert` 384 and
+//! 1 533 (a build of those cases alone).
 //!
 //! The float types gain nothing in range from this (they have no limit), but take the same
 //! path, so a scene description in world coordinates runs on any backend.
@@ -173,28 +195,65 @@ impl WorldPoint {
 /// Scales every value of `vals` by the one power of two that puts the largest magnitude in
 /// `[2^61, 2^62]` (left shifts exact; a right shift by one bit, for magnitudes from `2^62`,
 /// rounded half up). All zero: left as it is. Every `|v| < 2^63`. Returns the shift: `k >= 0`
-/// for `2^k`, -1 for the halving.
-#[inline]
+/// for `2^k`, -1 for the halving. The reference of the tests: the lights convert without the
+/// shifted copies ([`q60_shift`] and [`q60_scaled`], the same values).
+#[cfg(test)]
 fn scale_to_q60(vals: &mut [i64]) -> i32 {
     // The OR of the magnitudes has the largest one's leading bit.
-    let m = vals.iter().fold(0u64, |m, v| m | v.unsigned_abs());
-    if m == 0 {
-        return 0;
+    let k = q60_shift(vals.iter().fold(0u64, |m, v| m | v.unsigned_abs()));
+    for v in vals.iter_mut() {
+        *v = q60_shifted(*v, k);
     }
-    let lz = m.leading_zeros();
-    if lz >= 2 {
-        let k = lz - 2;
-        for v in vals.iter_mut() {
-            *v <<= k;
-        }
-        k as i32
+    k
+}
+
+/// [`scale_to_q60`]'s shift for values whose magnitudes OR to `m` (whose leading bit is the
+/// largest magnitude's): `k >= 0` for `2^k`, -1 for the halving, 0 for `m = 0`.
+#[inline(always)]
+fn q60_shift(m: u64) -> i32 {
+    match m.leading_zeros() {
+        64 => 0,
+        lz if lz >= 2 => lz as i32 - 2,
+        _ => -1,
+    }
+}
+
+/// `v` scaled by [`q60_shift`]'s `k`: `v 2^k`, or for `k = -1` halved, rounded half up
+/// (without the overflow of `v + 1`).
+#[inline(always)]
+fn q60_shifted(v: i64, k: i32) -> i64 {
+    if k >= 0 {
+        v << k
     } else {
-        for v in vals.iter_mut() {
-            // Half up, without the overflow of `v + 1`.
-            *v = (*v >> 1) + (*v & 1);
-        }
-        -1
+        (v >> 1) + (v & 1)
     }
+}
+
+/// `q60_shifted(v, k) 2^-60` in `T` (`T::from_q60` of it), without the 64-bit shift for
+/// `k >= 0` (`Real::from_q60_shl`, the same bits).
+#[inline(always)]
+fn q60_scaled<T: Real>(v: i64, k: i32) -> T {
+    if k >= 0 {
+        T::from_q60_shl(v, k as u32)
+    } else {
+        T::from_q60(q60_shifted(v, k))
+    }
+}
+
+/// [`q60_scaled`] of each coordinate.
+#[inline(always)]
+fn q60_vec3_scaled<T: Real>(v: [i64; 3], k: i32) -> Vec3<T> {
+    Vec3::new(
+        q60_scaled(v[0], k),
+        q60_scaled(v[1], k),
+        q60_scaled(v[2], k),
+    )
+}
+
+/// The OR of the coordinates' magnitudes (the largest one's leading bit, for [`q60_shift`]).
+#[inline(always)]
+fn magnitudes(v: [i64; 3]) -> u64 {
+    v[0].unsigned_abs() | v[1].unsigned_abs() | v[2].unsigned_abs()
 }
 
 /// `p` of the rescaled copies: the origin.
@@ -203,15 +262,18 @@ fn origin<T: Real>() -> Vec3<T> {
     Vec3::new(T::ZERO, T::ZERO, T::ZERO)
 }
 
-/// A vector of `x 2^-60` coordinates in `T`.
-#[inline(always)]
+/// A vector of `x 2^-60` coordinates in `T` (the reference of the tests, with
+/// [`scale_to_q60`]).
+#[cfg(test)]
 fn q60_vec3<T: Real>(v: [i64; 3]) -> Vec3<T> {
     Vec3::new(T::from_q60(v[0]), T::from_q60(v[1]), T::from_q60(v[2]))
 }
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
+    use std::vec;
 
     #[test]
     fn scale_to_q60_puts_the_largest_in_range() {
@@ -233,6 +295,93 @@ mod tests {
         let mut z = [0i64; 3];
         scale_to_q60(&mut z);
         assert_eq!(z, [0; 3]);
+    }
+
+    /// `Real::from_q60_shl(x, k)` is `from_q60(x << k)` bit for bit on every backend, for
+    /// every `k` and values up to the limit, `x << k` within an `i64` (its edges, powers of
+    /// two and their neighbours, ties of fixed point's rounding, random bits).
+    #[test]
+    fn the_shifted_conversions_are_the_shifts() {
+        fn check<T: Real>(x: i64, k: u32) {
+            let (a, b) = (T::from_q60_shl(x, k), T::from_q60(x << k));
+            assert!(
+                a == b || (a.is_nan_like() && b.is_nan_like()),
+                "{x} << {k}: {a:?} {b:?}"
+            );
+            assert_eq!(a.to_f64().to_bits(), b.to_f64().to_bits(), "{x} << {k}");
+        }
+        fn all(x: i64, k: u32) {
+            check::<f64>(x, k);
+            check::<f32>(x, k);
+            check::<crate::Fast32>(x, k);
+            #[cfg(feature = "fixed")]
+            check::<crate::Fixed22>(x, k);
+        }
+        let mut next = crate::test_rng::xorshift32(0x0DDB_1A5E);
+        for k in 0..=61u32 {
+            let lim = i64::MAX >> k; // x << k within an i64
+            let mut xs = vec![0, 1, -1, lim, -lim, lim - 1, 1 - lim];
+            for e in 0..(63 - k) {
+                let p = 1i64 << e;
+                xs.extend([p, -p, p + 1, -p - 1, p - 1, 1 - p]);
+                // Fixed point's ties: bit 37 - k set, nothing below.
+                if k <= 37 && e + k >= 38 {
+                    xs.push(p | (1 << (37 - k)));
+                    xs.push(-(p | (1 << (37 - k))));
+                }
+            }
+            for _ in 0..2000 {
+                let raw = ((u64::from(next()) << 32) | u64::from(next())) as i64;
+                xs.push(raw % lim);
+            }
+            for x in xs {
+                all(x, k);
+            }
+        }
+    }
+
+    /// The lights' conversions without the shifted copies are [`scale_to_q60`] and
+    /// `q60_vec3` of the differences, bit for bit (random points, sizes and distances over
+    /// the whole range, the halving among them).
+    #[test]
+    fn the_lights_convert_as_the_scaled_copies() {
+        fn go<T: Real>(d: [[i64; 3]; 4]) {
+            let mut flat: [i64; 12] = [0; 12];
+            for (i, v) in d.iter().enumerate() {
+                flat[3 * i..3 * i + 3].copy_from_slice(v);
+            }
+            let k = scale_to_q60(&mut flat);
+            let m = d.iter().fold(0u64, |m, v| m | magnitudes(*v));
+            assert_eq!(q60_shift(m), k);
+            for (i, v) in d.iter().enumerate() {
+                let want: Vec3<T> = q60_vec3([flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]]);
+                let got: Vec3<T> = q60_vec3_scaled(*v, k);
+                assert_eq!(
+                    [got.x, got.y, got.z].map(|c| c.to_f64().to_bits()),
+                    [want.x, want.y, want.z].map(|c| c.to_f64().to_bits()),
+                    "{d:?}"
+                );
+            }
+        }
+        let mut next = crate::test_rng::xorshift32(0x5EED_0001);
+        for _ in 0..20_000 {
+            let bits = next() % 64;
+            let mut c = || {
+                let raw = ((u64::from(next()) << 32) | u64::from(next())) as i64;
+                raw >> (64 - bits.max(1))
+            };
+            let d = [
+                [c(), c(), c()],
+                [c(), c(), c()],
+                [c(), c(), c()],
+                [c(), c(), c()],
+            ];
+            go::<f64>(d);
+            go::<f32>(d);
+            go::<crate::Fast32>(d);
+            #[cfg(feature = "fixed")]
+            go::<crate::Fixed22>(d);
+        }
     }
 
     #[test]

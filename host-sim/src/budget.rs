@@ -7,7 +7,8 @@
 //! issue's columns keep their positions), `DIR/budget.md` (the same as tables, with
 //! what each column is), `DIR/budget-table.md` (the deterministic tables alone: instruction
 //! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-unit.md`
-//! (the calls that take a normal, with a `Vec3` and with a `UnitVec3`), `DIR/budget-host.md`
+//! (the calls that take a normal, with a `Vec3` and with a `UnitVec3`), `DIR/budget-world.md`
+//! (the positional lights in world coordinates against plain ones), `DIR/budget-host.md`
 //! (the host times, one machine's) and `DIR/budget.png` (host time against max error, log-log,
 //! Pareto front highlighted).
 //!
@@ -41,6 +42,9 @@ mod cases;
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/points.rs"]
 mod points;
+#[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/world_cases.rs"]
+mod world_cases;
 
 use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
 
@@ -49,7 +53,7 @@ mod tables;
 pub use chart::plot;
 #[cfg(test)]
 use tables::pareto;
-pub use tables::{csv, host_times, markdown, pareto_by, unit_markdown};
+pub use tables::{csv, host_times, markdown, pareto_by, unit_markdown, world_markdown};
 
 /// The CSV header (fixed by the issue), then the RISC-V counts (issue 12), last so that the
 /// issue's columns keep their positions.
@@ -492,6 +496,10 @@ pub fn run(args: &BudgetArgs) -> Result<Vec<PathBuf>, String> {
         write(
             "budget-unit.md",
             unit_markdown(&read_counts(&args.counts)).as_bytes(),
+        )?,
+        write(
+            "budget-world.md",
+            world_markdown(&read_counts(&args.counts)).as_bytes(),
         )?,
         write("budget.png", &png)?,
     ];

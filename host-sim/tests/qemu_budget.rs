@@ -11,10 +11,15 @@
 //!   (`base` to `base + 2`), and no count wrapped;
 //! - every model id x backend x input is present, and every value is within the accuracy
 //!   target of the f64 reference computed here from the same (rounded) inputs;
+//! - the `U` lines (the calls with a unit direction) answer the `V` lines' bits, and the `W`
+//!   lines (the positional lights in world coordinates, 1000 units out) are within the
+//!   accuracy target of the plain cases' reference (`support/unit_rows.rs`,
+//!   `support/world_rows.rs`);
 //! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model); it is
-//!   built and run as two parts ([`M0_PARTS`]: the models, then the rest), each of which fits
-//!   the micro:bit's 256 KB where the whole no longer does, and their lines are read as one
-//!   image's;
+//!   built and run as three parts ([`M0_PARTS`]: the models, the rest, the world lights),
+//!   each of which fits the micro:bit's 256 KB where the whole no longer does, the other
+//!   targets' as two ([`PARTS`]: the world lights apart, so that they do not change the
+//!   plain kernels' inlining), and each target's lines are read as one image's;
 //! - the board demo's vertex shade (`D` lines: `Lit::shade` with the demo's lights and
 //!   materials, `Fixed22` on the M0, f32 on the M4F) is within the backend's target of f64,
 //!   scaled by the colour weights the model values are multiplied by.
@@ -38,6 +43,8 @@ mod qemu_output;
 mod riscv_refs;
 #[path = "support/unit_rows.rs"]
 mod unit_rows;
+#[path = "support/world_rows.rs"]
+mod world_rows;
 use kernel_sizes::{kernel_sizes, kernel_symbol};
 use process::{root, run};
 use qemu_output::{check_counter, check_no_wrap, parse, Line};
@@ -51,6 +58,9 @@ mod demo_shade;
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/points.rs"]
 mod points;
+#[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/world_cases.rs"]
+mod world_cases;
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
@@ -219,12 +229,17 @@ fn reference(round: fn(f64) -> f64) -> Result<Vec<Vec<Sample>>, String> {
 }
 
 /// The parts the Cortex-M0 image is built as (`QEMU_BUDGET_PART` of `boards/qemu-budget`):
-/// every backend's models, then the demo shader, the alternatives and the scene. The whole
-/// image came within 450 bytes of the micro:bit's 256 KB; the models alone take about 190 KB.
-/// (Measured when split: every value bit for bit the whole image's, and the counts within
-/// 0.4 % of it but for `sky_ground` and `sh9_irradiance` with a unit normal, -3.4 % and
-/// +2.7 %: LLVM inlines a little differently into the smaller image.)
-const M0_PARTS: [&str; 2] = ["models", "extras"];
+/// every backend's models, then the demo shader, the alternatives and the scene, then the
+/// world lights. The whole image came within 450 bytes of the micro:bit's 256 KB; the models
+/// alone take about 200 KB. (Measured when split: every value bit for bit the whole image's,
+/// and the counts within 0.4 % of it but for `sky_ground` and `sh9_irradiance` with a unit
+/// normal, -3.4 % and +2.7 %: LLVM inlines a little differently into the smaller image.)
+const M0_PARTS: [&str; 3] = ["models", "extras", "world"];
+
+/// The parts of the other targets' images: everything but the world lights, then those,
+/// which share the plain lights' functions and would change their inlining into the plain
+/// kernels (see `boards/qemu-budget/src/main.rs`, `PART`).
+const PARTS: [&str; 2] = ["main", "world"];
 
 /// Builds the image for `target` (only the cases of `part`, if given) into `target_dir`.
 fn build(
@@ -505,24 +520,21 @@ fn check_target(
     refs: &HashMap<&'static str, Vec<Vec<Sample>>>,
     rows: &mut BTreeMap<(String, String, usize), Row>,
 ) -> Result<(), String> {
-    // One image, or the M0's parts (each in its own target directory), read as one: their
+    // The parts (each in its own target directory: `PARTS`, `M0_PARTS`), read as one: their
     // lines and outputs in order, their kernels' sizes together (each kernel is in one part).
-    let parts: Vec<Option<&str>> = if short == "m0" {
-        M0_PARTS.iter().map(|&p| Some(p)).collect()
-    } else {
-        vec![None]
-    };
+    let parts: &[&str] = if short == "m0" { &M0_PARTS } else { &PARTS };
     let (mut out, mut lines, mut sizes, mut images) =
         (String::new(), Vec::new(), HashMap::new(), Vec::new());
-    for part in parts {
-        let dir = part.map_or_else(|| target_dir.to_path_buf(), |p| target_dir.join(p));
-        let elf = build(triple, profile, &dir, part)?;
+    for &part in parts {
+        let dir = target_dir.join(part);
+        let elf = build(triple, profile, &dir, Some(part))?;
         let o = qemu(triple, machine, &elf)?;
         let (l, selfcheck) = parse(&o)?;
         let sc = selfcheck.ok_or("no SELF line: the counter self-check did not run")?;
         let passed = check_counter(triple, &sc)?;
-        let what = part.map_or(String::new(), |p| format!(", part {p}"));
-        println!("{short} ({triple} on {machine}{what}): counter self-check passed: {passed}");
+        println!(
+            "{short} ({triple} on {machine}, part {part}): counter self-check passed: {passed}"
+        );
         sizes.extend(kernel_sizes(
             &std::fs::read(&elf).map_err(|e| e.to_string())?,
         )?);
@@ -601,6 +613,13 @@ fn check_target(
     check_scene(short, &out, &mut failures);
     check_demo_shade(short, &out, rows, &mut failures);
     unit_rows::check(short, &out, rows, &mut failures);
+    let tolerance = |backend: &str, model: &str| {
+        backends()
+            .iter()
+            .find(|b| b.name == backend)
+            .map_or(0.0, |b| (b.tolerance)(model))
+    };
+    world_rows::check(short, &out, refs, &tolerance, rows, &mut failures);
     check_sqrt(short, &out, &mut failures);
     if !out.lines().any(|l| l.starts_with("D ")) {
         failures.push(format!("{short}: no D lines (the demo shade did not run)"));
@@ -613,10 +632,11 @@ fn check_target(
         let (lines, _) = parse(out)?;
         let out2 = qemu(triple, m, elf)?;
         let (lines2, _) = parse(&out2)?;
-        // The D lines too, without their counts (0 there).
+        // The D, U and W lines too (their count in the fifth field), without their counts
+        // (0 there).
         let shades = |o: &str| -> Vec<String> {
             o.lines()
-                .filter(|l| l.starts_with("D "))
+                .filter(|l| l.starts_with("D ") || l.starts_with("U ") || l.starts_with("W "))
                 .map(|l| {
                     let f: Vec<&str> = l.split_whitespace().collect();
                     format!("{} {}", f[..4].join(" "), f[5..].join(" "))
@@ -638,8 +658,8 @@ fn check_target(
             ));
         } else {
             println!(
-                "{short}: the same image on {m} (a Cortex-M0 model, uncounted) gave the same {} values bit for bit",
-                lines2.len()
+                "{short}: the same image on {m} (a Cortex-M0 model, uncounted) gave the same {} lines' values bit for bit",
+                lines2.len() + d2.len()
             );
         }
     }
@@ -728,6 +748,7 @@ fn row_name(index: usize) -> &'static str {
         .or_else(|| points::ALTERNATIVES.get(index - MODELS.len()).map(|a| a.0))
         .or_else(|| demo_shade::CASES.get(index - DEMO_ROW).map(|c| c.0))
         .or_else(|| unit_rows::row_name(index))
+        .or_else(|| world_rows::row_name(index))
         .unwrap_or("?")
 }
 
@@ -828,7 +849,7 @@ fn main() -> ExitCode {
          code bytes (kernel + everything it reaches), max error vs f64 (relative to max(1, |v|))"
     );
     println!(
-        "{:<7} {:<9} {:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>6}",
+        "{:<7} {:<9} {:<29} {:>7} {:>7} {:>7} {:>7} {:>9} {:>6}",
         "tgt", "backend", "model", "min", "median", "max", "bytes", "max err", "ident"
     );
     for ((short, backend, mi), row) in &rows {
@@ -839,7 +860,7 @@ fn main() -> ExitCode {
         );
         let code = row.code.map(|c| c.to_string()).unwrap_or_default();
         println!(
-            "{short:<7} {backend:<9} {:<24} {mn:>7} {md:>7} {mx:>7} {code:>7} {:>9.2e} {:>3}/{}",
+            "{short:<7} {backend:<9} {:<29} {mn:>7} {md:>7} {mx:>7} {code:>7} {:>9.2e} {:>3}/{}",
             row_name(*mi),
             row.max_err,
             row.bit_identical,

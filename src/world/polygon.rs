@@ -1,6 +1,6 @@
 //! [`WorldPolygonLight`]: a polygon light in world coordinates.
 
-use super::{origin, q60_vec3, scale_to_q60, WorldPoint};
+use super::{magnitudes, origin, q60_shift, q60_vec3_scaled, WorldPoint};
 use crate::polygon::validate_polygon_f64;
 use crate::unit::Direction;
 #[cfg(feature = "phong")]
@@ -70,51 +70,52 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
     /// two that puts the largest coordinate in `[2, 4]`. Its models at the origin are this
     /// light's models at `p`.
     pub fn local(&self, p: WorldPoint) -> PolygonLight<T, N> {
-        self.local_scaled(p).0
+        let mut light = PolygonLight::empty_with_normal(self.normal);
+        self.fill_local(p, &mut light);
+        light
     }
 
-    /// [`WorldPolygonLight::local`] and the shift that scaled it (see `scale_to_q60`).
-    #[inline]
-    fn local_scaled(&self, p: WorldPoint) -> (PolygonLight<T, N>, i32) {
-        let mut d = [[0i64; 3]; N];
-        for (di, v) in d.iter_mut().zip(self.verts.iter()) {
-            *di = v.minus(p);
+    /// Pushes [`WorldPolygonLight::local`]'s vertices onto `light` (built empty, with this
+    /// polygon's normal, by the caller: the models then run on it where it was built, with no
+    /// copy of it; see [`PolygonLight::empty_with_normal`]) and returns the shift that scaled
+    /// them (see `scale_to_q60`). Two passes over the differences (three 64-bit subtractions a
+    /// vertex each) instead of a copy of them: the shift from their magnitudes, then each
+    /// converted already scaled (no 64-bit shift; the same values as `scale_to_q60` and
+    /// `q60_vec3`).
+    #[inline(always)]
+    fn fill_local(&self, p: WorldPoint, light: &mut PolygonLight<T, N>) -> i32 {
+        let m = self
+            .verts
+            .iter()
+            .fold(0u64, |m, v| m | magnitudes(v.minus(p)));
+        let shift = q60_shift(m);
+        for v in self.verts.iter() {
+            light.push_local(q60_vec3_scaled(v.minus(p), shift));
         }
-        let shift = scale_to_q60(d.as_flattened_mut());
-        let mut verts = Vec::new();
-        for &di in d.iter().take(self.verts.len()) {
-            // Cannot fail: at most N vertices.
-            let _ = verts.push(q60_vec3(di));
-        }
-        (PolygonLight::from_parts(verts, self.normal), shift)
+        shift
     }
 
-    /// [`WorldPolygonLight::local`] with the polygon's ball carried over (scaled as the
+    /// [`WorldPolygonLight::fill_local`] with the polygon's ball carried over (scaled as the
     /// vertices, its radius raised by `2^-18` for the conversions to `T`, which round each
     /// coordinate of the centre and of the vertices by at most half a unit in the last
     /// place: below `2^-22` at the local scale of 2 to 4), for the Phong terms. No ball where
     /// the radius would not fit the local format (`8`).
     #[cfg(feature = "phong")]
-    fn local_with_ball(&self, p: WorldPoint) -> PolygonLight<T, N> {
-        let (light, shift) = self.local_scaled(p);
+    #[inline(always)]
+    fn fill_local_with_ball(&self, p: WorldPoint, light: &mut PolygonLight<T, N>) {
+        let shift = self.fill_local(p, light);
         let Some((c, r)) = self.ball else {
-            return light;
-        };
-        let scale = |v: i64| -> Option<i64> {
-            if shift >= 0 {
-                i64::try_from(i128::from(v) << shift).ok()
-            } else {
-                Some((v >> 1) + (v & 1))
-            }
+            return;
         };
         // The centre lies within the vertices' range, so its offset scales as theirs did.
         let [x, y, z] = c.minus(p);
-        let (Some(x), Some(y), Some(z), Some(r)) = (scale(x), scale(y), scale(z), scale(r + 1))
-        else {
-            return light;
-        };
-        let rho = T::from_q60(r) + T::from_fixed_i32(1, 18);
-        light.with_ball(q60_vec3([x, y, z]), rho)
+        // Converted already scaled, as the vertices (no 64-bit or 128-bit shift; the same
+        // values), where the scaled values stay within an i64 (a halving always does).
+        let fits = |v: u64| shift < 0 || v.leading_zeros() > shift as u32;
+        if fits(magnitudes([x, y, z])) && fits((r + 1).unsigned_abs()) {
+            let rho = super::q60_scaled::<T>(r + 1, shift) + T::from_fixed_i32(1, 18);
+            light.set_ball(q60_vec3_scaled([x, y, z], shift), rho);
+        }
     }
 
     /// `[polygon_lambert]` with precise errors: see [`PolygonLight::try_lambert`] (no range
@@ -126,7 +127,11 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
     /// plane over the face or near the edges, or within `2^-9` of a vertex or of an edge
     /// beside it (README, "Fixed point").
     pub fn try_lambert(&self, p: WorldPoint, n: impl Direction<T>) -> Result<T, Error> {
-        self.local(p).try_lambert(origin(), n)
+        let mut light = PolygonLight::empty_with_normal(self.normal);
+        self.fill_local(p, &mut light);
+        // (`PolygonLight::try_lambert` less its range check of `p`, the origin here.)
+        let o = origin();
+        light.lambert_at(o, n, light.in_plane(o))
     }
 
     /// `[polygon_lambert]` at `p`: [`PolygonLight::lambert`] of [`WorldPolygonLight::local`].
@@ -134,7 +139,7 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
     /// Accuracy and cost: [the module docs](super) (measured by `tests/world.rs`).
     #[inline]
     pub fn lambert(&self, p: WorldPoint, n: impl Direction<T>) -> T {
-        self.local(p).lambert(origin(), n)
+        self.try_lambert(p, n).unwrap_or(T::ZERO)
     }
 
     /// `[phong_polygon]` with precise errors: see [`PolygonLight::try_phong`].
@@ -149,7 +154,11 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
         p: WorldPoint,
         r: impl Direction<T>,
     ) -> Result<T, Error> {
-        self.local_with_ball(p).try_phong(lobe, origin(), r)
+        let mut light = PolygonLight::empty_with_normal(self.normal);
+        self.fill_local_with_ball(p, &mut light);
+        // (`PolygonLight::try_phong` less its range check of `p`, the origin here.)
+        let o = origin();
+        light.phong_at(lobe, o, r, light.in_plane(o))
     }
 
     /// `[phong_polygon]` at `p`: [`PolygonLight::phong`] of [`WorldPolygonLight::local`].
@@ -158,7 +167,7 @@ impl<T: Real, const N: usize> WorldPolygonLight<T, N> {
     #[cfg(feature = "phong")]
     #[inline]
     pub fn phong(&self, lobe: &PhongLobe<T>, p: WorldPoint, r: impl Direction<T>) -> T {
-        self.local_with_ball(p).phong(lobe, origin(), r)
+        self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
     }
 }
 
@@ -231,7 +240,8 @@ mod tests {
             let Ok(p) = WorldPoint::from_f64(p, "p") else {
                 continue;
             };
-            let local = light.local_with_ball(p);
+            let mut local = PolygonLight::empty_with_normal(light.normal());
+            light.fill_local_with_ball(p, &mut local);
             let Some((bc, rho)) = local.ball() else {
                 continue;
             };

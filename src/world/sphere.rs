@@ -1,6 +1,8 @@
 //! [`WorldSphereLight`]: a sphere light in world coordinates.
 
-use super::{origin, q60_vec3, scale_to_q60, WorldPoint, RAW_LIMIT, SCALE};
+use super::{
+    magnitudes, origin, q60_scaled, q60_shift, q60_vec3_scaled, WorldPoint, RAW_LIMIT, SCALE,
+};
 use crate::unit::Direction;
 #[cfg(feature = "phong")]
 use crate::PhongLobe;
@@ -58,9 +60,9 @@ impl<T: Real> WorldSphereLight<T> {
     /// light's models at `p`.
     pub fn local(&self, p: WorldPoint) -> SphereLight<T> {
         let d = self.center.minus(p);
-        let mut v = [d[0], d[1], d[2], self.radius];
-        scale_to_q60(&mut v);
-        SphereLight::from_parts(q60_vec3([v[0], v[1], v[2]]), T::from_q60(v[3]))
+        // (`scale_to_q60` and `q60_vec3` without the shifted copies: the same values.)
+        let k = q60_shift(magnitudes(d) | self.radius.unsigned_abs());
+        SphereLight::from_parts(q60_vec3_scaled(d, k), q60_scaled(self.radius, k))
     }
 
     /// `[sphere_lambert]` with precise errors: see [`SphereLight::try_lambert`] (no range

@@ -15,6 +15,13 @@
 //! U <backend> <model> <input> <instructions> <value bits as hex, 1 or 3 channels>
 //! ```
 //!
+//! and, on the same backends, the cases of [`world_cases::WORLD_CASES`] (the positional lights
+//! in world coordinates, 1000 units from the origin),
+//!
+//! ```text
+//! W <backend> <model> <input> <instructions> <value bits as hex>
+//! ```
+//!
 //! then, for the alternatives of [`points`] (point lights, k-sample area lights; f32 only),
 //!
 //! ```text
@@ -95,6 +102,7 @@ mod points;
 #[cfg(target_arch = "riscv32")]
 mod rv_start;
 mod scene_cost;
+mod world_cases;
 
 use core::fmt::Write;
 use core::hint::black_box;
@@ -245,25 +253,67 @@ fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
     }
 }
 
+/// The `W` lines: the positional lights in world coordinates ([`world_cases`]), on the same
+/// backends as the `U` lines (the floats where there is an FPU, fixed point on the others).
+/// Not inlined: the world lights live only while they run.
+#[inline(never)]
+fn run_world<T: cases::Backend, M: Meter>(meter: &mut M) {
+    if !(cfg!(target_abi = "eabihf") || T::FIXED) {
+        return;
+    }
+    let name = T::NAME;
+    let ring = |i| cases::ring(i);
+    let dirs = Dirs {
+        count: RING,
+        get: &ring,
+    };
+    let lights = match world_cases::WorldLights::<T>::new() {
+        Ok(l) => l,
+        Err(e) => fail(
+            &mut Line::new(),
+            format_args!("{name}: a world light refused its parameters: {e:?}"),
+        ),
+    };
+    for case in 0..world_cases::WORLD_CASES.len() {
+        let id = MODELS[world_cases::WORLD_CASES[case].1];
+        if !selected(id) {
+            continue;
+        }
+        let mut out = Line::new();
+        world_cases::run_world(&lights, case, dirs, |x| x, meter, &mut |s| {
+            emit_as(&mut out, "W", name, &s)
+        });
+    }
+}
+
 /// The profiling filter (see the module docs): `None` runs everything.
 const ONLY: Option<&str> = option_env!("QEMU_BUDGET_ONLY");
 
 /// Which cases the image runs: all of them, or with `QEMU_BUDGET_PART` set at build time
-/// only the models (`models`: every backend's `V` and `U` lines) or only the rest (`extras`:
-/// the demo shader, the alternatives, the scene). The Cortex-M0 image is built as the two
-/// parts (`host-sim/tests/qemu_budget.rs` runs both and reads their lines as one image's):
-/// all of it no longer fits the micro:bit's 256 KB, and each part is checked on the
-/// micro:bit alone. The other targets run one image. A constant: the part left out is not
-/// linked.
+/// only the models (`models`: every backend's `V` and `U` lines), only the rest (`extras`:
+/// the demo shader, the alternatives, the scene), both (`main`), or only the world lights
+/// (`world`: the `W` lines). `host-sim/tests/qemu_budget.rs` builds the Cortex-M0 image as
+/// `models`, `extras` and `world` (all of it no longer fits the micro:bit's 256 KB; each
+/// part is checked on the micro:bit alone) and the others as `main` and `world`, and reads
+/// their lines as one image's. The world lights are an image apart on every target: they
+/// share the plain lights' functions, which then have two callers, and LLVM no longer
+/// inlines them into the plain kernels (measured: the M4F `polygon_lambert` row 703 -> 713
+/// instructions, `phong_polygon` 1 941 -> 1 961, in one image). A constant: the part left
+/// out is not linked.
 const PART: Option<&str> = option_env!("QEMU_BUDGET_PART");
-const RUN_MODELS: bool = part_is("models");
-const RUN_EXTRAS: bool = part_is("extras");
+const RUN_MODELS: bool = part_runs("models");
+const RUN_EXTRAS: bool = part_runs("extras");
+const RUN_WORLD: bool = part_runs("world");
 
-/// Whether the part `name` runs (every part without `QEMU_BUDGET_PART`).
-const fn part_is(name: &str) -> bool {
+/// Whether the part `name` runs (every part without `QEMU_BUDGET_PART`; `main` is every
+/// part but `world`).
+const fn part_runs(name: &str) -> bool {
     match PART {
         None => true,
-        Some(part) => cases::str_eq(part, name),
+        Some(part) => {
+            cases::str_eq(part, name)
+                || (cases::str_eq(part, "main") && !cases::str_eq(name, "world"))
+        }
     }
 }
 
@@ -401,6 +451,14 @@ fn main() -> ! {
     }
     if RUN_MODELS {
         for_each_backend!(run);
+    }
+    macro_rules! run_w {
+        ($t:ty) => {
+            run_world::<$t, _>(&mut m)
+        };
+    }
+    if RUN_WORLD {
+        for_each_backend!(run_w);
     }
     // One backend per core (the M0 image must fit the micro:bit's 256 KB): the float path
     // on the M4F, fixed point on the M0, as the boards run them.

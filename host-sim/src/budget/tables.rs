@@ -1,9 +1,10 @@
 //! The budget's text outputs: `budget.csv`, the markdown tables (`budget.md`,
-//! `budget-table.md`, `budget-unit.md`, `budget-host.md`) and the Pareto fronts they mark.
+//! `budget-table.md`, `budget-unit.md`, `budget-world.md`, `budget-host.md`) and the Pareto
+//! fronts they mark.
 
 use std::fmt::Write as _;
 
-use super::{cases, points, Counts, Kind, Row, HEADER, MODELS};
+use super::{cases, points, world_cases, Counts, Kind, Row, HEADER, MODELS};
 
 fn opt(x: Option<u64>) -> String {
     x.map(|v| v.to_string()).unwrap_or_default()
@@ -153,6 +154,37 @@ pub fn host_times(rows: &[Row]) -> String {
     );
     for r in rows {
         let _ = writeln!(s, "| `{}` | {} | {:.0} |", r.model, r.backend, r.host_ns);
+    }
+    s
+}
+
+/// The positional lights in world coordinates (`world_cases.rs`: 1000 units from the origin,
+/// 64 times as large) against the same calls in plain coordinates, from the QEMU harness's
+/// `<model>` and `<model>/world` rows (`budget-world.md`; empty without counts).
+pub fn world_markdown(counts: &Counts) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "| call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
+    let get = |t: &str, b: &str, m: &str| {
+        opt(counts
+            .get(&(t.to_owned(), b.to_owned(), m.to_owned()))
+            .and_then(|c| c.0))
+    };
+    for (world, model) in world_cases::WORLD_CASES {
+        let id = MODELS[model];
+        let _ = writeln!(
+            s,
+            "| `{id}` | {} | {} | {} | {} | {} | {} |",
+            get("m4f", "f32", id),
+            get("m4f", "f32", world),
+            get("m0", "fixed", id),
+            get("m0", "fixed", world),
+            get("rv32imc", "fixed", id),
+            get("rv32imc", "fixed", world),
+        );
     }
     s
 }

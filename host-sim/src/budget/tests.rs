@@ -91,6 +91,27 @@ fn counts_csv_is_read_by_column_name() {
 }
 
 #[test]
+fn world_table_pairs_each_call_with_its_world_row() {
+    let mut c = Counts::new();
+    let mut put = |t: &str, b: &str, m: &str, n: u64| {
+        c.insert((t.into(), b.into(), m.into()), (Some(n), None));
+    };
+    put("m4f", "f32", "polygon_lambert", 700);
+    put("m4f", "f32", "polygon_lambert/world", 900);
+    put("m0", "fixed", "sphere_lambert/world", 1400);
+    let t = world_markdown(&c);
+    assert_eq!(t.lines().count(), 2 + world_cases::WORLD_CASES.len());
+    assert!(
+        t.contains("| `polygon_lambert` | 700 | 900 |  |  |  |  |"),
+        "{t}"
+    );
+    assert!(
+        t.contains("| `sphere_lambert` |  |  |  | 1400 |  |  |"),
+        "{t}"
+    );
+}
+
+#[test]
 fn unit_table_pairs_each_call_with_its_unit_row() {
     let mut c = Counts::new();
     let mut put = |t: &str, b: &str, m: &str, n: u64| {

@@ -1,5 +1,6 @@
-//! What the QEMU budget's firmware prints: the parsed `V`/`U`/`A` lines, the counter's
-//! self-check, and the test that no count wrapped.
+//! What the QEMU budget's firmware prints: the parsed `V`/`A` lines (the `U` and `W` lines:
+//! `unit_rows.rs`, `world_rows.rs`), the counter's self-check, and the test that no count
+//! wrapped.
 
 use crate::{qemu_binary, qemu_version};
 
@@ -143,7 +144,7 @@ pub fn check_no_wrap(short: &str, out: &str, failures: &mut Vec<String>) {
     for l in out.lines() {
         let f: Vec<&str> = l.split_whitespace().collect();
         let fields: &[usize] = match f.first().copied() {
-            Some("V") | Some("D") | Some("U") => &[4],
+            Some("V") | Some("D") | Some("U") | Some("W") => &[4],
             Some("A") => &[5],
             Some("S") => &[3],
             Some("Q") => &[5, 6],

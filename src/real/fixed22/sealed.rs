@@ -61,6 +61,29 @@ impl crate::real::sealed::Sealed for Fixed22 {
         let bits = ((x >> 37) + 1) >> 1;
         Fixed22::from_bits(bits.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
     }
+    /// `from_q60(x << k)`: `floor(x 2^(k - 37))`, then the same rounding, in 32-bit halves
+    /// (no 64-bit shift, a library call on the M0): `x << k` within an `i64` puts it within
+    /// `2^26`, so the halves' shifts keep every bit it has.
+    #[inline(always)]
+    fn from_q60_shl(x: i64, k: u32) -> Self {
+        let (hi, lo) = ((x >> 32) as i32, x as u32);
+        let y = if k >= 37 {
+            // |x| < 2^(63 - k) <= 2^26: within `lo`.
+            (lo as i32) << (k - 37).min(31)
+        } else if k >= 5 {
+            // A right shift by 32 - (k - 5), in [1, 32]: bits of both halves.
+            let s = 37 - k; // in [1, 32]
+            if s >= 32 {
+                hi
+            } else {
+                ((hi as u32) << (32 - s) | (lo >> s)) as i32
+            }
+        } else {
+            // A right shift by 33 to 37: `hi` alone.
+            hi >> (5 - k)
+        };
+        Fixed22::from_bits((y >> 1) + (y & 1))
+    }
     /// `normalize3`'s unit vector and length, bit for bit, and the ratios in its rescaled
     /// space: with `v = V 2^-k` (`V` the rescaled vector, `S` its sum of squares and `1/|V|`
     /// the reciprocal square root the normalization computes anyway), `r / |v| = (r 2^k)/|V|`
