@@ -31,7 +31,8 @@
 //!
 //! # Elementary functions (own code; all total, all in `i32`/`u32` integer arithmetic)
 //!
-//! The kernels live in `fixed22/kernels.rs`. Instruction counts are Cortex-M0 (ARMv6-M: no
+//! The kernels live in `fixed22/kernels.rs` (products, divisions) and `fixed22/elementary.rs`
+//! (the functions, square roots to logarithms). Instruction counts are Cortex-M0 (ARMv6-M: no
 //! divide, no `CLZ`, a 32 x 32 -> 32-bit `MULS`), measured in the QEMU budget harness.
 //!
 //! | function | method | bound (tested) | measured |
@@ -230,11 +231,13 @@ impl MulAssign for Fixed22 {
     }
 }
 
+mod elementary;
 mod kernels;
 mod normalize;
 mod sealed;
 #[cfg(test)]
 mod tests;
+use elementary::*;
 use kernels::*;
 #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
 pub(crate) use kernels::{recip_q32, recip_q32_odd};

@@ -5,9 +5,8 @@
 //! `Real::normalize3`, `Real::unit3` and the sealed `sphere_ratios` are put together from
 //! them.
 
-use super::kernels::{
-    clz, even_top_of_square_sum, mul_bits_small, rsqrt_core_at, rsqrt_out, sqrt_out,
-};
+use super::elementary::{even_top_of_square_sum, rsqrt_core_at, rsqrt_out, sqrt_out};
+use super::kernels::{clz, mul_bits_small};
 use super::{Fixed22, FRAC};
 use crate::Real;
 

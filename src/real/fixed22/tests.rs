@@ -1,6 +1,6 @@
 //! The tests of [`Fixed22`](super::Fixed22)'s products and normalizations against the
-//! type's own saturating arithmetic, bit for bit (the kernels' own tests are in
-//! `kernels.rs`).
+//! type's own saturating arithmetic, bit for bit (the kernels' own tests against f64 are
+//! `tests/fixed_kernels.rs` and `tests/fixed_exhaustive.rs`).
 
 use super::normalize::rescale_by_top;
 use super::*;

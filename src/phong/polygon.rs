@@ -1,0 +1,285 @@
+//! The polygon light's Phong terms (Snyder eq. 25, appendices G-H): the walk round the
+//! clipped ring, each edge's `J` terms by the recurrence of [`cos_power_sums`], and for even
+//! `m` the clipped solid angle as the fan of Van Oosterom-Strackee triangles. See the module
+//! docs of [`crate::phong`].
+
+use crate::lobe::negligible_terms;
+use crate::polygon::{
+    arc_axis_form, cos_power_sums, floats_ball_below, for_each_clipped_edge, near_limit,
+    offset_products, phong_near_log2, phong_negligible, products_in_range, ClippedEdge,
+    PolygonLight,
+};
+use crate::unit::Direction;
+use crate::{Error, PhongLobe, Real, UnitVec3, Vec3};
+
+/// One polygon edge's Phong terms `(w, j)` for the exponent `m`: `w` the fan's triangle
+/// `(r, ua, ub)` (the clipped solid angle, even `m`; 0 for odd `m`) and `j` the edge's `J`
+/// terms, from `G = ua x d`, `ua.ub` and the directions of its endpoints (`a = ua/|ua|` with
+/// `r.a`, and `r.b`). `None` for an edge seen end-on (`G` without a direction) or whose `|G|`
+/// or `ua.ub` leave the range where products are normal and finite ([`products_in_range`]).
+#[inline(always)]
+fn phong_edge_terms<T: Real>(
+    g: Vec3<T>,
+    dot: T,
+    (ua, ra): (UnitVec3<T>, T),
+    rb: T,
+    r: UnitVec3<T>,
+    m: u32,
+) -> Option<(T, T)> {
+    let even = m & 1 == 0;
+    // An edge seen end-on (G = 0): x = 0 contributes nothing.
+    let (gu, glen) = g.normalize_with_length()?;
+    let gu = UnitVec3::new_unchecked(gu);
+    // G and ua.ub computed from subnormal or overflowing products (fixed point: too small to
+    // keep their precision): rescale (the caller).
+    if !products_in_range(glen, dot.abs()) {
+        return None;
+    }
+    // x = angle(ua, ub) with a consistent (cos x, sin x) pair from (ua.ub, |G|), both
+    // proportional to |ua| |ub|: the pair normalized.
+    // (`unit3` itself, inlined, so that the zero third component folds away where
+    // `Vec3::normalize` stays a call: the Cortex-M0 budget's `opt-level = "s"`, about 1.7 %
+    // of `phong_polygon`; the same bits.)
+    let [cx, cy, _] = T::unit3([dot, glen, T::ZERO])?;
+    let cs = Vec3::new(cx, cy, T::ZERO);
+    let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
+    let rg = r.dot_unit(gu);
+    let w = if even {
+        // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
+        // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
+        T::TWO * (rg * sin_x).atan2(T::ONE + cos_x + ra + rb)
+    } else {
+        T::ZERO
+    };
+    if m == 0 {
+        return Some((w, T::ZERO));
+    }
+    let (rp, f) = arc_axis_form(r, gu, ua, rg, ra);
+    // x itself enters only the sums of even order (odd m).
+    let x = if even { T::ZERO } else { glen.atan2(dot) };
+    // T_sum(a, b, m - 1, x) of Snyder appendix G: every T(k), k = m - 1, m - 3, ...
+    let (sum, last) = cos_power_sums(m - 1, x, cos_x, sin_x, ra, rp, f, None);
+    Some((w, rg * (sum + last)))
+}
+
+/// `(G, ua.ub)` of an edge for [`phong_edge_terms`] whose `G` (largest component `gm`) is below
+/// `2^-4`, from its own products `g` and `dot`, except where fixed point would lose `G`'s
+/// direction to rounding: with `p` near the edge's line, `|G|` below `2^-4 |d|`
+/// ([`EXACT_NEAR_LINE_LOG2`]), `G` and `ua.ub` are formed exactly and scaled
+/// ([`Real`]'s sealed `cross_dot_scaled`; the terms are scale-free); a short edge elsewhere
+/// (products below 1/64) is scaled up by shifts first. Measured on points near the boundary of
+/// random polygons (`tests/fixed_near.rs`): at `m = 128..255`, 1.8e-3 with the
+/// rounded `G` against 4.3e-4 exact, `p` 2^-8 from the boundary.
+#[cold]
+#[inline(never)]
+fn small_g_products<T: Real>(e: &ClippedEdge<T>, g: Vec3<T>, dot: T, gm: T) -> (Vec3<T>, T) {
+    if gm < T::from_fixed_i32(1, EXACT_NEAR_LINE_LOG2) * e.d.max_abs() {
+        if let Some(([x, y, z], dot)) = T::cross_dot_scaled(
+            [e.ua.x, e.ua.y, e.ua.z],
+            [e.ub.x, e.ub.y, e.ub.z],
+            [e.d.x, e.d.y, e.d.z],
+        ) {
+            return (Vec3::new(x, y, z), dot);
+        }
+    } else if !products_in_range(gm, dot.abs()) {
+        // A short edge, not near its line: the products of the edge scaled up (shifts) keep
+        // their precision (and stay in range for `phong_edge_terms`).
+        if let Some(s) = e.rescaled() {
+            return (s.ua.cross(s.d), s.ua.dot(s.ub));
+        }
+    }
+    (g, dot)
+}
+
+/// [`small_g_products`]' thresholds, `2^-4`: a `G` that small, and `p` within about `|d|/16`
+/// of the edge's line.
+const EXACT_NEAR_LINE_LOG2: u32 = 4;
+
+/// [`phong_edge_terms`] from the edge scaled by a power of two (exact; the terms are
+/// scale-free): the cold path for an edge whose coordinates or products leave the normal range
+/// at its own scale. `None` for an endpoint or `G` that still has no direction.
+#[cold]
+#[inline(never)]
+fn phong_edge_terms_rescaled<T: Real>(
+    e: &ClippedEdge<T>,
+    r: UnitVec3<T>,
+    m: u32,
+) -> Option<(T, T)> {
+    let s = e.rescaled()?;
+    let a = s.ua.to_unit()?;
+    let b = s.ub.to_unit()?;
+    phong_edge_terms(
+        s.ua.cross(s.d),
+        s.ua.dot(s.ub),
+        (a, r.dot_unit(a)),
+        r.dot_unit(b),
+        r,
+        m,
+    )
+}
+
+impl<T: Real, const N: usize> PolygonLight<T, N> {
+    /// `[phong_polygon]` with precise errors: see [`PolygonLight::phong`].
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] for `p` or `r`, [`Error::ZeroLength`] for `r`,
+    /// [`Error::Unresolved`] for a fixed-point `p` within the type's rounding of the plane, over
+    /// the face or near its edges, and for a fixed-point `p` within `2^-8` (`m < 128`) or
+    /// `2^-7` of a vertex or of an edge beside it (see [`PolygonLight::try_lambert`]).
+    pub fn try_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+    ) -> Result<T, Error> {
+        p.check_position("p")?;
+        self.phong_at(lobe, p, r, self.in_plane(p))
+    }
+
+    /// [`PolygonLight::try_phong`] for a `p` within the coordinate limit whose
+    /// [`PolygonLight::in_plane`] test is `plane` (computed once for both terms by the
+    /// polygon's [`Illuminant::diffuse_and_phong`](crate::Illuminant::diffuse_and_phong)).
+    #[inline]
+    pub(crate) fn phong_at(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+        plane: bool,
+    ) -> Result<T, Error> {
+        let ru = r.try_unit("r")?;
+        let r = ru.into_inner();
+        let m = lobe.m;
+        let r_min = near_limit::<T>(phong_near_log2(m));
+        if plane {
+            self.resolved_in_plane(p, r_min)?;
+            return Ok(T::ZERO);
+        }
+        // Fixed point, f32 and Fast32: a term provably below 2^-24 is 0
+        // (`polygon/negligible.rs`).
+        if T::RESOLUTION > T::ZERO {
+            if phong_negligible(self.vertices(), self.ball(), p, ru, lobe, r_min) {
+                return Ok(T::ZERO);
+            }
+        } else if negligible_terms::<T>() && floats_ball_below(self.ball(), p, ru, lobe) {
+            return Ok(T::ZERO);
+        }
+        let mut beside = false;
+        let even = m & 1 == 0;
+        let mut sum = T::ZERO;
+        // The solid angle of the clipped projection (even m), as `ApexFan` sums it, from the
+        // quantities the Phong terms compute anyway.
+        let mut fan = T::ZERO;
+        // The last edge's end, its direction and r . direction: the next edge starts there
+        // unless a horizon arc came between, so each vertex is normalized once.
+        let mut last: Option<(Vec3<T>, UnitVec3<T>, T)> = None;
+        let near = for_each_clipped_edge(self.vertices(), p, r, r_min, |e| {
+            if e.horizon {
+                // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
+                // m the fan's triangle is the same signed arc.
+                if even {
+                    fan += e.horizon_angle(r);
+                } else {
+                    sum += e.horizon_angle(r);
+                }
+                return;
+            }
+            let start = match last {
+                Some((at, dir, rd)) if at == e.ua => Some((dir, rd)),
+                _ => e.ua.to_unit().map(|a| (a, ru.dot_unit(a))),
+            };
+            let end = e.ub.to_unit().map(|b| (b, ru.dot_unit(b)));
+            last = end.map(|(b, rb)| (e.ub, b, rb));
+            // An edge whose coordinates or products leave the normal range at this scale
+            // (below TINY or beyond 1/TINY in absolute terms): the same edge scaled by a power
+            // of two (cold; the terms are scale-free). What still has no direction then (an
+            // edge shorter than TINY relative to its distance, seen end-on) is dropped from
+            // the J terms and the fan alike.
+            let terms = match (start, end) {
+                (Some(a), Some((_, rb))) => {
+                    // (`p` and the vertices are within the coordinate limit: the offsets'
+                    // products without fixed point's saturation tests, the same bits.)
+                    let (g, dot) = offset_products(e.ua, e.ub, e.d);
+                    let (g, dot) = if T::RESOLUTION > T::ZERO {
+                        // Fixed point: beside the edge, the limit's test; and where `G` is
+                        // small, its products again, exact or scaled (cold).
+                        let gm = g.max_abs();
+                        beside |= dot < T::ZERO && gm < r_min * e.d.max_abs();
+                        if gm < T::from_fixed_i32(1, EXACT_NEAR_LINE_LOG2) {
+                            small_g_products(&e, g, dot, gm)
+                        } else {
+                            (g, dot)
+                        }
+                    } else {
+                        (g, dot)
+                    };
+                    phong_edge_terms(g, dot, a, rb, ru, m)
+                }
+                _ => None,
+            };
+            // (Fixed point never needs it: `exact_if_small` hands it `G` and `ua.ub` in range.)
+            let Some((w, j)) = terms.or_else(|| {
+                if T::RESOLUTION > T::ZERO {
+                    None
+                } else {
+                    phong_edge_terms_rescaled(&e, ru, m)
+                }
+            }) else {
+                return;
+            };
+            if even {
+                fan += w;
+            }
+            sum += j;
+        });
+        if T::RESOLUTION > T::ZERO && (near || beside) {
+            return Err(Error::Unresolved("p"));
+        }
+        if even {
+            sum += fan;
+        }
+        Ok((sum.abs() * T::FRAC_1_TAU).clamp01())
+    }
+
+    /// `[phong_polygon]`: Phong illumination at `p` from the polygon (Snyder eq. 25), clipped to
+    /// the hemisphere around `r`, in [0, 1].
+    ///
+    /// Accuracy: measured, below. Cost per clipped edge: 2 cross products, 3
+    /// normalizations (the edge's end vertex, reused as the next edge's start; the edge's
+    /// plane normal; the `(cos x, sin x)` pair), ~5 dot products, 1 atan2 (`x` for odd m, the
+    /// solid-angle triangle for even m), no division, and `m/2` recurrence steps of 3 products
+    /// and a division by the step's integer (on fixed point, 4 products in
+    /// Q28 integers and a reciprocal from a table: `polygon/arc.rs`). For `m >= 11`, fixed
+    /// point, f32 and Fast32 first try to prove the term below `2^-24` and answer 0 at once
+    /// (`polygon/negligible.rs`; fixed point: a quick rejection of 200 to 680 instructions on
+    /// the M0, then a test against the polygon's bounding ball of about 300, about 3 500 for
+    /// the whole test; the floats: the ball's test alone, 41 M4F instructions, which proves 6
+    /// of the budget's 16 cases, 256 -> 172 and 1 490 -> 180; a
+    /// [`WorldPolygonLight`](crate::world::WorldPolygonLight) scales its own ball with the
+    /// polygon).
+    /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
+    /// 13 448 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
+    /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
+    /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 941 (1 933 before the plane
+    /// test moved ahead of `r`'s normalization, 1 892 without the
+    /// ball's test, which that case fails; 1 943 with the step's integers converted to floats
+    /// at every step). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond
+    /// about `1/TINY` or below `TINY`, e.g. an f32 scene scaled by `2^70` or `2^-40`) is
+    /// scaled by a power of two first, on a cold path that costs nothing when not taken.
+    /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the polygon's plane or
+    /// where [`PolygonLight::try_phong`] reports [`Error::Unresolved`].
+    ///
+    /// <!-- BEGIN acc-phong_polygon: target/accuracy/model-phong_polygon.md -->
+    /// Measured: f64 within 3.1e-13 of its reference (the independent quadrature, adversarial);
+    /// against f64, f32 1.6e-6 at m = 255 (ill-conditioned: 1.8e-6 at m = 255; near boundary:
+    /// 1.2e-4 at m = 255), Fast32 2.9e-5 at m = 0 (ill-conditioned: 2.9e-5 at m = 0; near
+    /// boundary: 1.2e-4 at m = 255), Fixed22 9.3e-6 at m = 255; 61 089 cases in all
+    /// (`docs/accuracy.md`).
+    /// <!-- END acc-phong_polygon -->
+    #[inline]
+    pub fn phong(&self, lobe: &PhongLobe<T>, p: Vec3<T>, r: impl Direction<T>) -> T {
+        self.try_phong(lobe, p, r).unwrap_or(T::ZERO)
+    }
+}
