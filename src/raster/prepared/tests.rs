@@ -1,4 +1,5 @@
-//! Tests of `raster/prepared.rs`: the prepared mesh against the plain draw.
+//! Tests of `raster/prepared.rs`: the triangles' recorded band rows draw the same pixels as
+//! drawing every triangle in every band.
 
 use super::{PreparedMesh, PreparedVertex, TriangleRows};
 use crate::raster::{
