@@ -62,7 +62,7 @@ mod validate;
 pub(crate) use arc::{arc_axis_form, cos_power_sums};
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use clip::ClippedEdge;
-pub(crate) use clip::{for_each_clipped_edge, ApexFan};
+pub(crate) use clip::{for_each_clipped_edge, for_each_unclipped_edge, ApexFan};
 #[cfg(feature = "phong")]
 pub(crate) use edge::offset_products;
 #[cfg(feature = "phong")]
@@ -319,15 +319,17 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// 2 dot products, 1 sqrt, 1 atan2, 1 division (no per-vertex normalization); on f32 with
     /// an FPU, an edge within a right angle 1 cross product, 4 dot products, 1 sqrt,
     /// 1 division and a degree-9 polynomial instead ([`Real::arc_ratio`]); per horizon
-    /// crossing: a few multiply-adds. On f32 a ring wholly above the horizon whose edges are
-    /// all within a right angle takes the edge terms' sum without the clipping walk
-    /// (`polygon::edge::unclipped_ratio_sum`, the same bits). Measured on a quad (QEMU,
-    /// median): 583 Cortex-M4F instructions in f32 (the budget's 16 inputs: 244 unlit, 583
-    /// wholly lit, 773 to 931 clipped; before the walk-free sum 224, 703 and 756 to 914; 692
-    /// before the plane test moved ahead of the normal's normalization to be shared with the
-    /// Phong term, 920 with the arc tangent), 4 929 Cortex-M0 instructions
-    /// in `Fixed22` (5 073 with the edge term's last two products saturating, 6 325 with the
-    /// offsets' products saturating too: `polygon::edge::offset_products`).
+    /// crossing: a few multiply-adds. A ring wholly above the horizon takes its edge terms
+    /// without the clipping walk (`polygon::for_each_unclipped_edge`; on f32 where every edge
+    /// is within a right angle, `polygon::edge::unclipped_ratio_sum`), the same bits.
+    /// Measured on a quad (QEMU, median of the budget's 16 inputs): 545 Cortex-M4F
+    /// instructions in f32 (242 unlit, 545 wholly lit, 771 to 929 clipped; with the walk
+    /// alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
+    /// normalization to be shared with the Phong term, 920 with the arc tangent), 4 646
+    /// Cortex-M0 instructions in `Fixed22` (1 114 unlit, 4 646 wholly lit, 4 562 to 6 257
+    /// clipped; with the walk alone 1 046, 4 929 and 4 540 to 6 230; 5 073 with the edge
+    /// term's last two products saturating, 6 325 with the offsets' products saturating too:
+    /// `polygon::edge::offset_products`).
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the
     /// polygon's plane (fixed point: 0 too where [`PolygonLight::try_lambert`] reports
     /// [`Error::Unresolved`], over the face or near the boundary).
@@ -477,20 +479,37 @@ fn lambert_fixed<T: Real>(
         }
         return Ok(T::ZERO);
     }
-    let mut sum = T::ZERO;
-    let mut beside = false;
-    let near = for_each_clipped_edge(
+    // A ring wholly above the horizon: the walk's terms and tests, without its clipping state
+    // (`for_each_unclipped_edge`; every vertex's distance tested once, as the walk does).
+    let (mut sum, mut beside, mut near) = (T::ZERO, false, false);
+    let whole = for_each_unclipped_edge(
         verts,
         p,
         n,
-        r_min,
         #[inline(always)]
-        |e| {
-            let (term, too_near) = e.lambert_term_resolved(n, r_min);
+        |ua, ub, d| {
+            near |= T::all_within([ub.x, ub.y, ub.z], r_min);
+            let (term, too_near) = edge::edge_atan_term_fixed(ua, ub, d, n, r_min);
             sum += term;
             beside |= too_near;
+            true
         },
     );
+    if !whole {
+        (sum, beside) = (T::ZERO, false);
+        near = for_each_clipped_edge(
+            verts,
+            p,
+            n,
+            r_min,
+            #[inline(always)]
+            |e| {
+                let (term, too_near) = e.lambert_term_resolved(n, r_min);
+                sum += term;
+                beside |= too_near;
+            },
+        );
+    }
     if near || beside {
         return Err(Error::Unresolved("p"));
     }

@@ -155,6 +155,49 @@ impl<T: Real> ApexFan<T> {
     }
 }
 
+/// [`for_each_clipped_edge`] for a ring wholly above the horizon (every `(v - p).k >= 0`, the
+/// walk's own test): calls `edge(ua, ub, d)` for each edge in the walk's order (the polygon's
+/// own edges from vertex 0, `d` its edge vector) with no state for horizon crossings, and
+/// returns `true`; `false` as soon as a vertex is below the horizon or `edge` returns `false`
+/// (the caller then walks, discarding what it summed). Each vertex's offset is taken once.
+#[inline(always)]
+pub(crate) fn for_each_unclipped_edge<T: Real>(
+    verts: &[Vec3<T>],
+    p: Vec3<T>,
+    k: Vec3<T>,
+    mut edge: impl FnMut(Vec3<T>, Vec3<T>, Vec3<T>) -> bool,
+) -> bool {
+    let kv = [k.x, k.y, k.z];
+    let above = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv) >= T::ZERO;
+    // Fixed point, whose edge terms cost about 500 Cortex-M0 instructions: every vertex's
+    // height first, so that no term is computed for a ring the walk must clip (measured: the
+    // RP2040 demo's frame 1 11 820 558 -> 11 811 113 cycles; 11 840 841 with the walk alone).
+    // The floats' terms are cheaper than the heights' second pass: each vertex tested as it
+    // comes (a build of the Cortex-M4F budget's quad alone, wholly lit, 609 -> 581
+    // instructions).
+    let all_first = T::RESOLUTION > T::ZERO;
+    if all_first && !verts.iter().all(|&v| above(v - p)) {
+        return false;
+    }
+    let Some((&first, rest)) = verts.split_first() else {
+        return false;
+    };
+    let u0 = first - p;
+    if !(all_first || above(u0)) {
+        return false;
+    }
+    let (mut va, mut ua) = (first, u0);
+    for &vb in rest {
+        let ub = vb - p;
+        if !((all_first || above(ub)) && edge(ua, ub, vb - va)) {
+            return false;
+        }
+        (va, ua) = (vb, ub);
+    }
+    // The closing edge, back to vertex 0.
+    edge(ua, u0, first - va)
+}
+
 /// Walks the ring `verts` seen from `p`, clipped to the half-space `(v - p).k >= 0`, and calls
 /// `f` with each clipped edge in ring order (see [`ClippedEdge`]); horizon arcs run between a
 /// crossing down and the next crossing up. Nothing is called if no vertex is above the

@@ -112,54 +112,52 @@ pub(super) fn edge_ratio_term<T: Real>(
 }
 
 /// The sum of [`edge_ratio_term`] over every edge of the ring `verts` seen from `p`, for a
-/// ring wholly above the horizon of the unit `k` (every `(v - p).k >= 0`): the sum the
-/// clipping walk ([`super::for_each_clipped_edge`], each edge's
+/// ring wholly above the horizon of the unit `k` ([`super::for_each_unclipped_edge`]): the sum
+/// the clipping walk ([`super::for_each_clipped_edge`], each edge's
 /// [`edge_angle_term`](super::ClippedEdge::lambert_term)) makes there, bit for bit (the same
 /// edges from the same vertex, the same products in the same order, the same range tests),
-/// without the walk's state for horizon crossings, and each vertex's offset and squared
-/// length computed once instead of twice. `None` (the caller walks) where a vertex is below
-/// the horizon, an edge subtends more than a right angle or a squared length leaves
-/// `[TINY, 1/TINY]` (where the walk takes the arc-tangent form), and for a backend without an
-/// arc ratio (decided at compile time). Measured on the Cortex-M4F in f32 (QEMU, the budget's
-/// quad, 16 inputs): 703 -> 583 instructions where the quad is wholly lit, a cost of about 20
-/// (a vertex's offset and height) where it then walks, 224 -> 244 unlit and 756..914 ->
-/// 773..931 clipped; the Gouraud demo frame 0 3 176 388 -> 3 166 206 instructions, the
-/// per-pixel frame 34 020 844 -> 33 861 533.
+/// each vertex's squared length computed once instead of twice. `None` (the caller walks)
+/// where a vertex is below the horizon, an edge subtends more than a right angle or a squared
+/// length leaves `[TINY, 1/TINY]` (where the walk takes the arc-tangent form), and for a
+/// backend without an arc ratio (decided at compile time). Measured on the Cortex-M4F in f32
+/// (QEMU, the budget's quad, 16 inputs): 703 -> 545 instructions where the quad is wholly
+/// lit, a cost of about 18 (a vertex's offset and height) where it then walks, 224 -> 242
+/// unlit and 756..914 -> 771..929 clipped; the Gouraud demo frame 0 3 176 388 -> 3 164 100
+/// instructions, the per-pixel frame 34 020 844 -> 33 796 343.
 #[inline(always)]
 pub(super) fn unclipped_ratio_sum<T: Real>(verts: &[Vec3<T>], p: Vec3<T>, k: Vec3<T>) -> Option<T> {
     T::ONE.arc_ratio()?;
-    let kv = [k.x, k.y, k.z];
     let (lo, hi) = (T::TINY, T::ONE / T::TINY);
-    // The walk's height test (`dot3_small`, `>= 0` above) and `edge_ratio_term`'s range test.
-    let above = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv) >= T::ZERO;
     let in_range = |l2: T| l2 >= lo && l2 <= hi;
-    let (&first, rest) = verts.split_first()?;
-    let u0 = first - p;
-    if !above(u0) {
-        return None;
-    }
-    let l0 = u0.dot(u0);
-    if !in_range(l0) {
-        return None;
-    }
-    let (mut va, mut ua, mut la) = (first, u0, l0);
+    // The first edge's `|ua|^2`; each edge hands its `|ub|^2` to the next.
+    let u0 = *verts.first()? - p;
+    let mut la = u0.dot(u0);
     let mut sum = T::ZERO;
-    for &vb in rest.iter().chain(core::iter::once(&first)) {
-        let ub = vb - p;
-        let lb = ub.dot(ub);
-        if !(above(ub) && in_range(lb)) {
-            return None;
-        }
-        let (g, dot) = (ua.cross(vb - va), ua.dot(ub));
-        let r = (la * lb).rsqrt();
-        let c = dot * r;
-        if !(c >= T::ZERO) {
-            return None;
-        }
-        sum += c.arc_ratio()? * g.dot(k) * r;
-        (va, ua, la) = (vb, ub, lb);
-    }
-    Some(sum)
+    let whole = super::for_each_unclipped_edge(
+        verts,
+        p,
+        k,
+        #[inline(always)]
+        |ua, ub, d| {
+            let lb = ub.dot(ub);
+            if !(in_range(la) && in_range(lb)) {
+                return false;
+            }
+            let (g, dot) = (ua.cross(d), ua.dot(ub));
+            let r = (la * lb).rsqrt();
+            let c = dot * r;
+            if !(c >= T::ZERO) {
+                return false;
+            }
+            let Some(ratio) = c.arc_ratio() else {
+                return false;
+            };
+            sum += ratio * g.dot(k) * r;
+            la = lb;
+            true
+        },
+    );
+    whole.then_some(sum)
 }
 
 /// [`edge_angle_term`] for an edge whose products leave the normal range (fixed point: are too
