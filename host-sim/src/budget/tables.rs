@@ -162,60 +162,38 @@ pub fn host_times(rows: &[Row]) -> String {
 /// 64 times as large) against the same calls in plain coordinates, from the QEMU harness's
 /// `<model>` and `<model>/world` rows (`budget-world.md`; empty without counts).
 pub fn world_markdown(counts: &Counts) -> String {
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "| call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |"
-    );
-    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
-    let get = |t: &str, b: &str, m: &str| {
-        opt(counts
-            .get(&(t.to_owned(), b.to_owned(), m.to_owned()))
-            .and_then(|c| c.0))
-    };
-    for (world, model) in world_cases::WORLD_CASES {
-        let id = MODELS[model];
-        let _ = writeln!(
-            s,
-            "| `{id}` | {} | {} | {} | {} | {} | {} |",
-            get("m4f", "f32", id),
-            get("m4f", "f32", world),
-            get("m0", "fixed", id),
-            get("m0", "fixed", world),
-            get("rv32imc", "fixed", id),
-            get("rv32imc", "fixed", world),
-        );
-    }
-    s
+    paired_markdown(counts, ["plain", "world"], &world_cases::WORLD_CASES)
 }
 
 /// The calls that take a normal or a reflection direction, with a `Vec3` of any length (the
 /// call normalizes it) and with a `UnitVec3` (normalized once by the caller), from the QEMU
 /// harness's `<model>` and `<model>/unit` rows (`budget-unit.md`; empty without counts).
 pub fn unit_markdown(counts: &Counts) -> String {
-    let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "| call | M4F f32: `Vec3` n | M4F f32: `UnitVec3` n | M0 `Fixed22`: `Vec3` n | M0 `Fixed22`: `UnitVec3` n | RV32IMC `Fixed22`: `Vec3` n | RV32IMC `Fixed22`: `UnitVec3` n |"
-    );
-    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|");
+    paired_markdown(counts, ["`Vec3` n", "`UnitVec3` n"], &cases::UNIT_CASES)
+}
+
+/// One row per `(row name, model index)` of `pairs`: the model's row and the paired row, on
+/// the M4F (f32), the M0 and RV32IMC (`Fixed22`), under the column names `what`.
+fn paired_markdown(counts: &Counts, what: [&str; 2], pairs: &[(&str, usize)]) -> String {
+    let mut s = String::from("| call |");
+    for target in ["M4F f32", "M0 `Fixed22`", "RV32IMC `Fixed22`"] {
+        for w in what {
+            let _ = write!(s, " {target}: {w} |");
+        }
+    }
+    let _ = writeln!(s, "\n|---|---:|---:|---:|---:|---:|---:|");
     let get = |t: &str, b: &str, m: &str| {
         opt(counts
             .get(&(t.to_owned(), b.to_owned(), m.to_owned()))
             .and_then(|c| c.0))
     };
-    for (unit, model) in cases::UNIT_CASES {
+    for &(paired, model) in pairs {
         let id = MODELS[model];
-        let _ = writeln!(
-            s,
-            "| `{id}` | {} | {} | {} | {} | {} | {} |",
-            get("m4f", "f32", id),
-            get("m4f", "f32", unit),
-            get("m0", "fixed", id),
-            get("m0", "fixed", unit),
-            get("rv32imc", "fixed", id),
-            get("rv32imc", "fixed", unit),
-        );
+        let _ = write!(s, "| `{id}` |");
+        for (t, b) in [("m4f", "f32"), ("m0", "fixed"), ("rv32imc", "fixed")] {
+            let _ = write!(s, " {} | {} |", get(t, b, id), get(t, b, paired));
+        }
+        s.push('\n');
     }
     s
 }
