@@ -481,7 +481,13 @@ fn lambert_fixed<T: Real>(
     }
     // A ring wholly above the horizon: the walk's terms and tests, without its clipping state
     // (`for_each_unclipped_edge`; every vertex's distance tested once, as the walk does).
+    // Each edge within a right angle by the arc ratio from its endpoints' unit directions
+    // (`edge::unit_ratio_term`), each direction normalized once: the first vertex's at the
+    // first edge, kept for the closing one; the others by the arc-tangent form.
     let (mut sum, mut beside, mut near) = (T::ZERO, false, false);
+    let kv = [n.x, n.y, n.z];
+    let unit = |u: Vec3<T>| T::unit3([u.x, u.y, u.z]);
+    let (mut first, mut a_dir, mut edges_left) = (None, None, verts.len());
     let whole = for_each_unclipped_edge(
         verts,
         p,
@@ -489,9 +495,22 @@ fn lambert_fixed<T: Real>(
         #[inline(always)]
         |ua, ub, d| {
             near |= T::all_within([ub.x, ub.y, ub.z], r_min);
-            let (term, too_near) = edge::edge_atan_term_fixed(ua, ub, d, n, r_min);
+            if edges_left == verts.len() {
+                first = unit(ua);
+                a_dir = first;
+            }
+            edges_left = edges_left.saturating_sub(1);
+            let b_dir = if edges_left == 0 { first } else { unit(ub) };
+            let ratio = a_dir
+                .zip(b_dir)
+                .and_then(|(a, b)| edge::unit_ratio_term(a, b, kv));
+            let (term, too_near) = match ratio {
+                Some(term) => (term, false),
+                None => edge::edge_atan_term_fixed(ua, ub, d, n, r_min),
+            };
             sum += term;
             beside |= too_near;
+            a_dir = b_dir;
             true
         },
     );

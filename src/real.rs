@@ -52,6 +52,13 @@ pub(crate) mod sealed {
         fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
             a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
         }
+        /// `a - b` componentwise for positions within the fixed-point coordinate limit (each
+        /// difference at most 8 in magnitude): the value of [`Vec3`]'s `-`, bit for bit (fixed
+        /// point without its saturation tests, which cannot trigger there).
+        #[inline(always)]
+        fn sub3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+            [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+        }
         /// `a b` under the same precondition (factors below 16, the product below 512): the
         /// value of `*`, bit for bit (fixed point without its saturation test).
         #[inline(always)]
@@ -358,8 +365,9 @@ pub trait Real:
     }
     /// `acos(c)/sqrt(1 - c^2)` (the arc ratio `theta/sin(theta)` of the angle whose cosine is
     /// `c = self`) for `c` in [0, 1], where the backend has one cheaper than an arc tangent:
-    /// `f32`'s degree-9 polynomial (at most 1.58 ULP; `src/real/arc_ratio.rs`). `None` for the
-    /// others (the default), whose polygon edge terms keep the arc-tangent form.
+    /// `f32`'s degree-9 polynomial (at most 1.58 ULP; `src/real/arc_ratio.rs`) and
+    /// `Fixed22`'s 16 cubic pieces (within 3.9e-7; `src/real/fixed22/elementary.rs`). `None`
+    /// for the others (the default), whose polygon edge terms keep the arc-tangent form.
     #[inline(always)]
     fn arc_ratio(self) -> Option<Self> {
         None

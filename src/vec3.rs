@@ -30,6 +30,15 @@ impl<T: Real> Vec3<T> {
     pub fn to_f64(self) -> [f64; 3] {
         [self.x.to_f64(), self.y.to_f64(), self.z.to_f64()]
     }
+    /// `self - o` for two positions within [`Real::COORDINATE_LIMIT`] (every caller's
+    /// validated vertices and checked shading points): the bits of `-`, without fixed point's
+    /// saturation tests, which cannot trigger there (the sealed `sub3_small`).
+    #[inline(always)]
+    #[cfg_attr(not(feature = "polygon"), allow(dead_code))]
+    pub(crate) fn offset_from(self, o: Self) -> Self {
+        let [x, y, z] = T::sub3_small([self.x, self.y, self.z], [o.x, o.y, o.z]);
+        Vec3::new(x, y, z)
+    }
     /// Dot product.
     #[inline(always)]
     pub fn dot(self, o: Self) -> T {

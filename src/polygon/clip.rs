@@ -169,6 +169,7 @@ pub(crate) fn for_each_unclipped_edge<T: Real>(
 ) -> bool {
     let kv = [k.x, k.y, k.z];
     let above = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv) >= T::ZERO;
+    let sub = |a: Vec3<T>, b: Vec3<T>| a.offset_from(b);
     // Fixed point, whose edge terms cost about 500 Cortex-M0 instructions: every vertex's
     // height first, so that no term is computed for a ring the walk must clip (measured: the
     // RP2040 demo's frame 1 11 820 558 -> 11 811 113 cycles; 11 840 841 with the walk alone).
@@ -176,26 +177,26 @@ pub(crate) fn for_each_unclipped_edge<T: Real>(
     // comes (a build of the Cortex-M4F budget's quad alone, wholly lit, 609 -> 581
     // instructions).
     let all_first = T::RESOLUTION > T::ZERO;
-    if all_first && !verts.iter().all(|&v| above(v - p)) {
+    if all_first && !verts.iter().all(|&v| above(sub(v, p))) {
         return false;
     }
     let Some((&first, rest)) = verts.split_first() else {
         return false;
     };
-    let u0 = first - p;
+    let u0 = sub(first, p);
     if !(all_first || above(u0)) {
         return false;
     }
     let (mut va, mut ua) = (first, u0);
     for &vb in rest {
-        let ub = vb - p;
-        if !((all_first || above(ub)) && edge(ua, ub, vb - va)) {
+        let ub = sub(vb, p);
+        if !((all_first || above(ub)) && edge(ua, ub, sub(vb, va))) {
             return false;
         }
         (va, ua) = (vb, ub);
     }
     // The closing edge, back to vertex 0.
-    edge(ua, u0, first - va)
+    edge(ua, u0, sub(first, va))
 }
 
 /// Walks the ring `verts` seen from `p`, clipped to the half-space `(v - p).k >= 0`, and calls
@@ -225,9 +226,12 @@ where
     let nv = verts.len();
     let kv = [k.x, k.y, k.z];
     let height = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv);
-    let Some(start) = verts.iter().position(|&v| height(v - p) >= T::ZERO) else {
+    let Some(start) = verts
+        .iter()
+        .position(|&v| height(v.offset_from(p)) >= T::ZERO)
+    else {
         // Nothing above: only the vertices' distances to test (fixed point).
-        return T::RESOLUTION > T::ZERO && verts.iter().any(|&v| near_point(v - p));
+        return T::RESOLUTION > T::ZERO && verts.iter().any(|&v| near_point(v.offset_from(p)));
     };
     // The ring from `start` round to `start` again: `v0` the edge's first vertex, `v1` its
     // second, the index stepped with a wrap (no division: a library call on the M0; `get`, so
@@ -236,7 +240,7 @@ where
         return false;
     };
     let (mut v0, mut i1) = (first, start);
-    let mut u0 = v0 - p;
+    let mut u0 = v0.offset_from(p);
     let mut d0 = height(u0);
     // The start of the current clipped edge (a vertex or a crossing up).
     let mut a0 = u0;
@@ -249,11 +253,11 @@ where
         let Some(&v1) = verts.get(i1) else {
             break;
         };
-        let u1 = v1 - p;
+        let u1 = v1.offset_from(p);
         near |= near_point(u1);
         let d1 = height(u1);
         let below1 = d1 < T::ZERO;
-        let edge = v1 - v0;
+        let edge = v1.offset_from(v0);
         v0 = v1;
         match (below0, below1) {
             (false, false) => {

@@ -114,7 +114,7 @@ pub(crate) fn phong_negligible<T: Real>(
     // where `Fixed22`'s 16-bit halves stay within `i32` and nothing saturates.
     let mut above = false;
     for v in verts {
-        let u = arr(*v - p);
+        let u = arr(v.offset_from(p));
         let d = T::dot3_small(rv, u);
         above |= d >= T::ZERO;
         if d > T::ZERO && !(T::mul_small(d, d) < T::mul_small(lim2, T::dot3_small(u, u))) {
@@ -122,7 +122,9 @@ pub(crate) fn phong_negligible<T: Real>(
         }
     }
     if !above {
-        return !verts.iter().any(|v| T::all_within(arr(*v - p), r_min));
+        return !verts
+            .iter()
+            .any(|v| T::all_within(arr(v.offset_from(p)), r_min));
     }
     let near = r_min * T::from_u32(4);
     if let Some((c, rho)) = ball {
@@ -133,7 +135,7 @@ pub(crate) fn phong_negligible<T: Real>(
     // Every vertex's direction and its cosine, below the threshold.
     let mut dirs = [([T::ZERO; 3], T::ZERO); MAX_VERTICES];
     for (v, entry) in verts.iter().zip(dirs.iter_mut()) {
-        let u = *v - p;
+        let u = v.offset_from(p);
         if T::all_within(arr(u), near) {
             return false;
         }

@@ -241,7 +241,7 @@ use elementary::*;
 use kernels::*;
 #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
 pub(crate) use kernels::{recip_q32, recip_q32_odd};
-use normalize::{rescale_by_top, unit_rsqrt, unit_scale, unit_sqrt_rsqrt};
+use normalize::{magnitude_top, rescale_by_top, unit_rsqrt, unit_scale, unit_sqrt_rsqrt};
 
 impl Real for Fixed22 {
     const ZERO: Self = Fixed22::from_bits(0);
@@ -291,6 +291,13 @@ impl Real for Fixed22 {
     #[inline]
     fn sqrt(self) -> Self {
         Fixed22::from_bits(sqrt_bits(self.to_bits()))
+    }
+    /// 16 cubic pieces in Q22 (`arc_ratio_bits`, a 256-byte table): within 3.9e-7 of
+    /// `theta/sin(theta)` for `c` in [0, 1] (every input measured); `c` outside [0, 1] is
+    /// clamped.
+    #[inline(always)]
+    fn arc_ratio(self) -> Option<Self> {
+        Some(Fixed22::from_bits(arc_ratio_bits(self.to_bits())))
     }
     #[inline]
     fn atan2(self, x: Self) -> Self {
@@ -404,11 +411,8 @@ impl Real for Fixed22 {
     /// the sum of squares (at most 12) none either: the same bits as `*` and `+`, about 100
     /// fewer Cortex-M0 instructions a call.
     fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
-        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
-        if m <= Self::TINY {
-            return None;
-        }
-        let ([x, y, z], d) = rescale_by_top(v, m.to_bits() as u32);
+        let top = magnitude_top(v, Self::TINY)?;
+        let ([x, y, z], d) = rescale_by_top(v, top);
         let (len, inv) = unit_sqrt_rsqrt(unit_scale(x, y, z));
         let s = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
         Some(([s(x), s(y), s(z)], len * d))
@@ -416,11 +420,8 @@ impl Real for Fixed22 {
     /// The default's body, with the rescaling by its `m` (see `normalize3`).
     #[inline(always)]
     fn unit3(v: [Self; 3]) -> Option<[Self; 3]> {
-        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
-        if m <= Self::TINY {
-            return None;
-        }
-        let ([x, y, z], _) = rescale_by_top(v, m.to_bits() as u32);
+        let top = magnitude_top(v, Self::TINY)?;
+        let ([x, y, z], _) = rescale_by_top(v, top);
         let r = unit_rsqrt(unit_scale(x, y, z));
         let s = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), r.to_bits()));
         Some([s(x), s(y), s(z)])

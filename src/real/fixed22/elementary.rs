@@ -339,3 +339,48 @@ pub(super) fn ln_bits(x: i32) -> i32 {
     let l = mul_q30(t, horner_q30(&LN1P_Q30, t));
     q30_to_q22(e * LN2_Q30 + l)
 }
+
+/// The arc ratio `R(1 - x)` (`R(c) = acos(c)/sqrt(1 - c^2)`) on `x` in [0, 1] as 16 cubic
+/// pieces, one per `[i/16, (i + 1)/16]`: `[a0, a1, a2, a3]` in Q22 of `a0 + a1 u + a2 u^2 +
+/// a3 u^3`, `u = x - i/16` (Chebyshev interpolation of each piece on 64 nodes). 256 bytes;
+/// evaluated in Q22 ([`arc_ratio_bits`]) within 3.9e-7 (1.62 LSB) of `R`, measured on every
+/// input by `tests/fixed_exhaustive.rs`. (One degree-8 polynomial in Q25 was within 5.4e-7
+/// for 8 products where these take 3.)
+const ARC_RATIO_CUBICS: [[i32; 4]; 16] = [
+    [4194304, 1398108, 558692, 253541],
+    [4283930, 1470931, 606164, 284352],
+    [4378300, 1550051, 659401, 320116],
+    [4477833, 1636248, 719327, 361840],
+    [4582996, 1730428, 787056, 410779],
+    [4694323, 1833652, 863934, 468514],
+    [4812415, 1947168, 951605, 537048],
+    [4937961, 2072452, 1052084, 618950],
+    [5071751, 2211264, 1167864, 717538],
+    [5214692, 2365715, 1302057, 837147],
+    [5367839, 2538354, 1458580, 983510],
+    [5532424, 2732290, 1642417, 1164292],
+    [5709892, 2951347, 1859973, 1389897],
+    [5901956, 3200271, 2119584, 1674647],
+    [6110662, 3485022, 2432238, 2038594],
+    [6338474, 3813173, 2812634, 2510327],
+];
+
+/// `acos(c)/sqrt(1 - c^2)` (`theta/sin(theta)` with `c = cos(theta)`) in Q22 of a Q22 `c` in
+/// [0, 1]: the piece of [`ARC_RATIO_CUBICS`] that `x = 1 - c` falls in, by Horner's rule in
+/// Q22 (`mul_bits_small`, exact floors: the factors stay below 2 and `2^-4`, far inside its
+/// range). `c` is clamped to [0, 1] first: `c > 1` (a cosine's rounding) answers exactly 1,
+/// `c < 0` answers `R(0)`, about `pi/2`, which the caller (the polygon edge terms, only for
+/// `c` above 0) never asks. Within 3.9e-7 of `R` on [0, 1]. About 40 Cortex-M0 instructions.
+#[inline(always)]
+pub(super) fn arc_ratio_bits(c: i32) -> i32 {
+    let x = (1 << FRAC) - c.clamp(0, 1 << FRAC); // [0, 2^22]
+                                                 // The piece (x = 1 belongs to the last one) and the offset in it, below 2^18 + 1.
+    let i = ((x >> 18) as usize).min(15);
+    let u = x - ((i as i32) << 18);
+    let [a0, a1, a2, a3] = match ARC_RATIO_CUBICS.get(i) {
+        Some(&piece) => piece,
+        None => ARC_RATIO_CUBICS[0],
+    };
+    let m = super::kernels::mul_bits_small;
+    m(m(m(a3, u) + a2, u) + a1, u) + a0
+}

@@ -92,11 +92,8 @@ impl crate::real::sealed::Sealed for Fixed22 {
     /// `r 2^k < |V|` (at most 3.5) once `|v| > r`: no overflow.
     #[inline(always)]
     fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)> {
-        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
-        if m <= Self::TINY {
-            return None;
-        }
-        let ([x, y, z], k) = rescale_by_top_exp(v, m.to_bits() as u32);
+        let top = magnitude_top(v, Self::TINY)?;
+        let ([x, y, z], k) = rescale_by_top_exp(v, top);
         let s2 = unit_scale(x, y, z);
         let (len, inv) = unit_sqrt_rsqrt(s2);
         let sc = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
@@ -126,6 +123,13 @@ impl crate::real::sealed::Sealed for Fixed22 {
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         let p = |k: usize| mul_bits_small(a[k].to_bits(), b[k].to_bits());
         Fixed22::from_bits(p(0).wrapping_add(p(1)).wrapping_add(p(2)))
+    }
+    /// Wrapping subtractions: exact (and so the saturating `-`'s bits) for differences within
+    /// the format's range, which positions within the coordinate limit keep.
+    #[inline(always)]
+    fn sub3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        let d = |i: usize| Fixed22::from_bits(a[i].to_bits().wrapping_sub(b[i].to_bits()));
+        [d(0), d(1), d(2)]
     }
     /// `mul_bits_small`: exact `floor(a b / 2^22)`, no saturation test.
     #[inline(always)]
