@@ -87,6 +87,16 @@ impl<T: Real> UnitVec3<T> {
         (T::dot3_small(a, b), T::dot3_small(c, c).sqrt())
     }
 
+    /// `(self . o, self x o)`: [`Vec3::dot`] and [`Vec3::cross`], bit for bit, with
+    /// [`UnitVec3::dot_unit`]'s cheaper fixed point.
+    #[inline(always)]
+    #[cfg(all(feature = "polygon", feature = "phong"))]
+    pub(crate) fn dot_and_cross(self, o: UnitVec3<T>) -> (T, Vec3<T>) {
+        let (a, b) = (self.array(), o.array());
+        let [x, y, z] = T::cross3_small(a, b);
+        (T::dot3_small(a, b), Vec3::new(x, y, z))
+    }
+
     /// The scalar triple product `self . (g x s)` of three unit vectors: the value of
     /// `self.dot(g.cross(s))`, bit for bit, with [`UnitVec3::dot_unit`]'s cheaper fixed point
     /// (the cross product's components are at most 1).

@@ -26,7 +26,6 @@ fn phong_edge_terms<T: Real>(
     r: UnitVec3<T>,
     m: u32,
 ) -> Option<(T, T)> {
-    let even = m & 1 == 0;
     // An edge seen end-on (G = 0): x = 0 contributes nothing.
     let (gu, glen) = g.normalize_with_length()?;
     let gu = UnitVec3::new_unchecked(gu);
@@ -43,6 +42,31 @@ fn phong_edge_terms<T: Real>(
     let [cx, cy, _] = T::unit3([dot, glen, T::ZERO])?;
     let cs = Vec3::new(cx, cy, T::ZERO);
     let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
+    let angle = || glen.atan2(dot);
+    Some(phong_arc_terms(
+        gu,
+        (cos_x, sin_x),
+        angle,
+        (ua, ra),
+        rb,
+        r,
+        m,
+    ))
+}
+
+/// [`phong_edge_terms`] from the edge plane's unit normal `gu` and the `(cos x, sin x)` pair
+/// of the angle `x` it subtends; `x` itself, where needed (odd `m`), from `angle`.
+#[inline(always)]
+fn phong_arc_terms<T: Real>(
+    gu: UnitVec3<T>,
+    (cos_x, sin_x): (T, T),
+    angle: impl FnOnce() -> T,
+    (ua, ra): (UnitVec3<T>, T),
+    rb: T,
+    r: UnitVec3<T>,
+    m: u32,
+) -> (T, T) {
+    let even = m & 1 == 0;
     let rg = r.dot_unit(gu);
     let w = if even {
         // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
@@ -52,14 +76,92 @@ fn phong_edge_terms<T: Real>(
         T::ZERO
     };
     if m == 0 {
-        return Some((w, T::ZERO));
+        return (w, T::ZERO);
     }
     let (rp, f) = arc_axis_form(r, gu, ua, rg, ra);
     // x itself enters only the sums of even order (odd m).
-    let x = if even { T::ZERO } else { glen.atan2(dot) };
+    let x = if even { T::ZERO } else { angle() };
     // T_sum(a, b, m - 1, x) of Snyder appendix G: every T(k), k = m - 1, m - 3, ...
     let (sum, last) = cos_power_sums(m - 1, x, cos_x, sin_x, ra, rp, f, None);
-    Some((w, rg * (sum + last)))
+    (w, rg * (sum + last))
+}
+
+/// The smallest `cos x` for which fixed point takes an edge's Phong terms from its endpoints'
+/// unit directions ([`phong_unit_edge_terms`]): `2^-16`, far above the rounding of their dot
+/// product, so that such an edge has `ua.ub > 0` (never the test's `beside`, which needs
+/// `ua.ub < 0`) and lies away from `G`'s cancellation near the edge's line between its
+/// endpoints.
+const UNIT_MIN_COS_LOG2: u32 = 16;
+
+/// Fixed point's [`phong_edge_terms`] for an edge within a right angle (`cos x` at least
+/// [`UNIT_MIN_COS_LOG2`]), from the unit directions `a` and `b` of its endpoints, which the walk
+/// normalizes anyway: `cos x = a.b`, and `G = a x b` normalized gives the plane's normal and
+/// `sin x = |a x b|`. That spares the offsets' products (`ua x d`, `ua.ub`), the range and
+/// near-line tests and the `(cos x, sin x)` pair's own normalization. `None` (the caller takes
+/// [`phong_edge_terms`]) for a wider edge or a `G` without a direction.
+///
+/// Accuracy: `a x b` is within a few `2^-22` absolute, so `G`'s direction within that over
+/// `sin x`; every term it enters is a multiple of `x` (the arc's length), so the error stays a
+/// few `2^-22` absolute per edge.
+#[inline(always)]
+fn phong_unit_edge_terms<T: Real>(
+    (a, ra): (UnitVec3<T>, T),
+    (b, rb): (UnitVec3<T>, T),
+    r: UnitVec3<T>,
+    m: u32,
+) -> Option<(T, T)> {
+    let (c, g) = a.dot_and_cross(b);
+    if !(c >= T::from_fixed_i32(1, UNIT_MIN_COS_LOG2)) {
+        return None;
+    }
+    let (gu, s) = g.normalize_with_length()?;
+    let gu = UnitVec3::new_unchecked(gu);
+    let (cos_x, sin_x) = (c.min(T::ONE), s.clamp01());
+    // x = R(cos x) sin x by the arc ratio where the backend has one (fixed point: 3 products
+    // for the arc tangent's division and polynomial), else the arc tangent.
+    let angle = || match cos_x.arc_ratio() {
+        Some(ratio) => T::mul_small(ratio, sin_x),
+        None => sin_x.atan2(cos_x),
+    };
+    Some(phong_arc_terms(
+        gu,
+        (cos_x, sin_x),
+        angle,
+        (a, ra),
+        rb,
+        r,
+        m,
+    ))
+}
+
+/// [`phong_edge_terms`] from the edge's offsets: `G = ua x d` and `ua.ub` (fixed point: with
+/// the test of a `p` beside the edge, which sets `beside`, and where `G` is small its products
+/// again, exact or scaled; cold).
+#[inline(always)]
+fn offset_edge_terms<T: Real>(
+    e: &ClippedEdge<T>,
+    a: (UnitVec3<T>, T),
+    rb: T,
+    r: UnitVec3<T>,
+    m: u32,
+    r_min: T,
+    beside: &mut bool,
+) -> Option<(T, T)> {
+    // (`p` and the vertices are within the coordinate limit: the offsets' products without
+    // fixed point's saturation tests, the same bits.)
+    let (g, dot) = offset_products(e.ua, e.ub, e.d);
+    let (g, dot) = if T::RESOLUTION > T::ZERO {
+        let gm = g.max_abs();
+        *beside |= dot < T::ZERO && gm < r_min * e.d.max_abs();
+        if gm < T::from_fixed_i32(1, EXACT_NEAR_LINE_LOG2) {
+            small_g_products(e, g, dot, gm)
+        } else {
+            (g, dot)
+        }
+    } else {
+        (g, dot)
+    };
+    phong_edge_terms(g, dot, a, rb, r, m)
 }
 
 /// `(G, ua.ub)` of an edge for [`phong_edge_terms`] whose `G` (largest component `gm`) is below
@@ -196,24 +298,16 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             // edge shorter than TINY relative to its distance, seen end-on) is dropped from
             // the J terms and the fan alike.
             let terms = match (start, end) {
-                (Some(a), Some((_, rb))) => {
-                    // (`p` and the vertices are within the coordinate limit: the offsets'
-                    // products without fixed point's saturation tests, the same bits.)
-                    let (g, dot) = offset_products(e.ua, e.ub, e.d);
-                    let (g, dot) = if T::RESOLUTION > T::ZERO {
-                        // Fixed point: beside the edge, the limit's test; and where `G` is
-                        // small, its products again, exact or scaled (cold).
-                        let gm = g.max_abs();
-                        beside |= dot < T::ZERO && gm < r_min * e.d.max_abs();
-                        if gm < T::from_fixed_i32(1, EXACT_NEAR_LINE_LOG2) {
-                            small_g_products(&e, g, dot, gm)
-                        } else {
-                            (g, dot)
-                        }
+                (Some(a), Some(b)) => {
+                    let unit = if T::RESOLUTION > T::ZERO {
+                        phong_unit_edge_terms(a, b, ru, m)
                     } else {
-                        (g, dot)
+                        None
                     };
-                    phong_edge_terms(g, dot, a, rb, ru, m)
+                    match unit {
+                        Some(terms) => Some(terms),
+                        None => offset_edge_terms(&e, a, b.1, ru, m, r_min, &mut beside),
+                    }
                 }
                 _ => None,
             };
