@@ -321,13 +321,17 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// 1 division and a degree-9 polynomial instead ([`Real::arc_ratio`]); per horizon
     /// crossing: a few multiply-adds. A ring wholly above the horizon takes its edge terms
     /// without the clipping walk (`polygon::for_each_unclipped_edge`; on f32 where every edge
-    /// is within a right angle, `polygon::edge::unclipped_ratio_sum`), the same bits.
+    /// is within a right angle, `polygon::edge::unclipped_ratio_sum`), the same bits; on
+    /// `Fixed22` each of its edges within a right angle takes the arc ratio from its ends' unit
+    /// directions instead (each vertex normalized once; per edge 2 dot products, 1 cross
+    /// product, a table's cubic piece: `polygon::edge::unit_ratio_term`).
     /// Measured on a quad (QEMU, median of the budget's 16 inputs): 545 Cortex-M4F
     /// instructions in f32 (242 unlit, 545 wholly lit, 771 to 929 clipped; with the walk
     /// alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
-    /// normalization to be shared with the Phong term, 920 with the arc tangent), 4 646
-    /// Cortex-M0 instructions in `Fixed22` (1 114 unlit, 4 646 wholly lit, 4 562 to 6 257
-    /// clipped; with the walk alone 1 046, 4 929 and 4 540 to 6 230; 5 073 with the edge
+    /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 881
+    /// Cortex-M0 instructions in `Fixed22` (1 017 unlit, 3 881 wholly lit, 4 487 to 6 177
+    /// clipped; with the arc-tangent form for every edge 1 114, 4 646 and 4 562 to 6 257, with
+    /// the walk alone 1 046, 4 929 and 4 540 to 6 230; 5 073 with the edge
     /// term's last two products saturating, 6 325 with the offsets' products saturating too:
     /// `polygon::edge::offset_products`).
     /// Fallback: 0 for a zero or non-finite input, and 0 when `p` is in the

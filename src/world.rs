@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 109 | 239 | 1181 | 1380 | 940 | 1069 |
-//! | `sphere_lambert_hermite` | 117 | 248 | 1172 | 1377 | 930 | 1074 |
-//! | `polygon_lambert` | 545 | 1143 | 4646 | 5256 | 3788 | 4193 |
-//! | `phong_sphere` | 493 | 616 | 5762 | 5930 | 4425 | 4545 |
-//! | `phong_polygon` | 1941 | 2678 | 13448 | 14245 | 9096 | 9346 |
+//! | `sphere_lambert` | 109 | 239 | 1135 | 1334 | 924 | 1053 |
+//! | `sphere_lambert_hermite` | 117 | 248 | 1126 | 1331 | 914 | 1058 |
+//! | `polygon_lambert` | 551 | 1146 | 3881 | 4491 | 3389 | 3794 |
+//! | `phong_sphere` | 493 | 616 | 5716 | 5884 | 4409 | 4529 |
+//! | `phong_polygon` | 1938 | 2675 | 12107 | 12934 | 8033 | 8513 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole

@@ -351,9 +351,14 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// of the budget's 16 cases, 256 -> 172 and 1 490 -> 180; a
     /// [`WorldPolygonLight`](crate::world::WorldPolygonLight) scales its own ball with the
     /// polygon).
+    /// On `Fixed22` an edge within a right angle takes `cos x`, `sin x` and the plane's normal
+    /// from its ends' unit directions instead of the offsets' products and the pair's
+    /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 13 448 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
+    /// 12 107 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 12 106 to 14 878 where the reflection meets the quad; 13 448 with every edge from
+    /// the offsets' products; in a build of the cases alone, at m = 15, 12 826 against 13 303
+    /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
     /// vectors' products saturating); on the Cortex-M4F in f32, 1 941 (1 933 before the plane
@@ -369,7 +374,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// Measured: f64 within 3.1e-13 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 1.6e-6 at m = 255 (ill-conditioned: 1.8e-6 at m = 255; near boundary:
     /// 1.2e-4 at m = 255), Fast32 2.9e-5 at m = 0 (ill-conditioned: 2.9e-5 at m = 0; near
-    /// boundary: 1.2e-4 at m = 255), Fixed22 9.3e-6 at m = 255; 61 089 cases in all
+    /// boundary: 1.2e-4 at m = 255), Fixed22 1.1e-5 at m = 255; 61 089 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_polygon -->
     #[inline]
