@@ -456,6 +456,13 @@ fn in_plane<T: Real>(verts: &[Vec3<T>], normal: Vec3<T>, p: Vec3<T>) -> bool {
     let tol = if T::RESOLUTION > T::ZERO {
         T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
     } else {
+        // The floats: beyond `4 EPSILON |d|_1` (at least the tolerance's `|d|_max`), `p` is
+        // off the plane without the NaN-aware maximum (the answer for every `p` not within a
+        // few ULPs of the plane; the same answer as the test below, which decides the rest).
+        let sum = d.x.abs() + d.y.abs() + d.z.abs();
+        if dist.abs() > T::from_f64(4.0) * T::EPSILON * sum {
+            return false;
+        }
         T::from_f64(4.0) * T::EPSILON * d.max_abs()
     };
     !(dist.abs() > tol)

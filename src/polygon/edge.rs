@@ -132,6 +132,11 @@ pub(super) fn unclipped_ratio_sum<T: Real>(verts: &[Vec3<T>], p: Vec3<T>, k: Vec
     // The first edge's `|ua|^2`; each edge hands its `|ub|^2` to the next.
     let u0 = *verts.first()? - p;
     let mut la = u0.dot(u0);
+    // Each squared length tested once: vertex 0's here, every other as an edge's end (an
+    // edge's start passed as the previous edge's end; the closing edge ends at vertex 0).
+    if !in_range(la) {
+        return None;
+    }
     let mut sum = T::ZERO;
     let whole = super::for_each_unclipped_edge(
         verts,
@@ -140,7 +145,7 @@ pub(super) fn unclipped_ratio_sum<T: Real>(verts: &[Vec3<T>], p: Vec3<T>, k: Vec
         #[inline(always)]
         |ua, ub, d| {
             let lb = ub.dot(ub);
-            if !(in_range(la) && in_range(lb)) {
+            if !in_range(lb) {
                 return false;
             }
             let (g, dot) = (ua.cross(d), ua.dot(ub));
