@@ -361,7 +361,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 941 (1 933 before the plane
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 894 (1 941 before the plane
+    /// test's maximum went off the hot path and `abs` became `VABS.F32`; 1 933 before the plane
     /// test moved ahead of `r`'s normalization, 1 892 without the
     /// ball's test, which that case fails; 1 943 with the step's integers converted to floats
     /// at every step). Scale-free on the float types: an edge whose coordinates or products would leave the normal range (beyond
