@@ -442,7 +442,14 @@ impl<'a, P: PixelFormat> Band<'a, P> {
     }
     /// Fills the pixels with `colour` and the depth band (if any) with [`DEPTH_FAR`].
     pub fn clear(&mut self, colour: P) {
-        self.pixels.fill(colour);
+        // Eight at a time: the RP2040 demo's frame 1 11 407 102 -> 11 380 730 rp2040js cycles
+        // against a plain `fill` (the depth's constant fill compiles to `memset`, to which the
+        // same chunks added nothing).
+        let mut chunks = self.pixels.chunks_exact_mut(8);
+        for c in &mut chunks {
+            c.fill(colour);
+        }
+        chunks.into_remainder().fill(colour);
         if let Some(d) = self.depth.as_deref_mut() {
             d.fill(DEPTH_FAR);
         }
