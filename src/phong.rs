@@ -159,6 +159,12 @@ impl<T: Real> HemisphereLight<T> {
 #[cfg(feature = "cap")]
 #[inline]
 fn cap_boundary_sums<T: Real>(m: u32, x: T, sin_x: T, c: T, s: T, cs: T, ss: T) -> (T, T) {
+    // Every factor of the loops' products is at most pi in magnitude: `F_i` and `G_i` (and
+    // their rescaled forms) are integrals over an arc of at most pi of powers of
+    // `|a + b cos psi| <= |a| + |b| <= 1` (`x <= pi`, `sin x <= 1`), `t`, `pw`, `v2`, `a` and
+    // `b` are at most 1: the products without fixed point's saturation tests, the same bits
+    // (about 15 fewer Cortex-M0 instructions each).
+    let mul = T::mul_small;
     let a = cs * c;
     let b = ss * s;
     let parity = (m - 1) & 1;
@@ -178,19 +184,20 @@ fn cap_boundary_sums<T: Real>(m: u32, x: T, sin_x: T, c: T, s: T, cs: T, ss: T) 
         let mut pw = if parity == 0 { T::ONE - v2 } else { d };
         for i in 1..m {
             let h = f - g;
-            let f_new = f - t * h;
-            g = (g + t * h).mul_u32(i).div_u32(i + 1);
+            let th = mul(t, h);
+            let f_new = f - th;
+            g = (g + th).mul_u32(i).div_u32(i + 1);
             f = f_new;
             if i & 1 == parity {
-                fsum += pw * f;
-                gsum += pw * g;
-                pw -= v2 * pw;
+                fsum += mul(pw, f);
+                gsum += mul(pw, g);
+                pw -= mul(v2, pw);
             }
         }
     } else {
         for i in 1..m {
-            let f_new = a * f + b * g;
-            let g_new = (b * f + a * g).mul_u32(i).div_u32(i + 1);
+            let f_new = mul(a, f) + mul(b, g);
+            let g_new = (mul(b, f) + mul(a, g)).mul_u32(i).div_u32(i + 1);
             f = f_new;
             g = g_new;
             if i & 1 == parity {
