@@ -37,10 +37,12 @@ use crate::unit::Direction;
 use crate::{Error, Real, UnitVec3, Vec3};
 
 /// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma`, `ss = sin sigma`.
+/// (Cosines and sines, and below the arc tangents' angles: every factor at most pi, so the
+/// products without fixed point's saturation tests, the same bits.)
 #[inline]
 pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
     if c >= ss {
-        (c * ss * ss).clamp01()
+        T::mul_small(T::mul_small(c, ss), ss).clamp01()
     } else if c <= -ss {
         T::ZERO
     } else {
@@ -52,9 +54,10 @@ pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
 /// cases then need no more registers than a dot product and a product.
 #[inline(never)]
 fn cap_lambert_fillet<T: Real>(c: T, cs: T, ss: T) -> T {
-    let q = ((ss - c) * (ss + c)).sqrt();
-    let pi_e = c * ss * ss * q.atan2(-cs * c) - cs * q + q.atan2(cs);
-    (pi_e * T::FRAC_1_PI).clamp01()
+    let m = T::mul_small;
+    let q = m(ss - c, ss + c).sqrt();
+    let pi_e = m(m(m(c, ss), ss), q.atan2(m(-cs, c))) - m(cs, q) + q.atan2(cs);
+    m(pi_e, T::FRAC_1_PI).clamp01()
 }
 
 /// The Hermite approximation's value where it needs only `c = n.axis`: `c ss^2` where the
@@ -65,7 +68,7 @@ fn cap_lambert_fillet<T: Real>(c: T, cs: T, ss: T) -> T {
 #[inline(always)]
 pub(crate) fn outside_fillet<T: Real>(c: T, ss: T, ss2: T) -> Option<T> {
     if c >= ss {
-        Some((c * ss2).clamp01())
+        Some(T::mul_small(c, ss2).clamp01())
     } else if c <= -ss {
         Some(T::ZERO)
     } else {

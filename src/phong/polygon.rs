@@ -71,7 +71,7 @@ fn phong_arc_terms<T: Real>(
     let w = if even {
         // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
         // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
-        T::TWO * (rg * sin_x).atan2(T::ONE + cos_x + ra + rb)
+        T::TWO * T::mul_small(rg, sin_x).atan2(T::ONE + cos_x + ra + rb)
     } else {
         T::ZERO
     };

@@ -226,6 +226,15 @@ where
     let nv = verts.len();
     let kv = [k.x, k.y, k.z];
     let height = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv);
+    // An edge scaled by a fraction `t` in [0, 1]: `edge * t`, bit for bit, without fixed
+    // point's saturation tests (`mul_unit`: the product is at most the edge).
+    let scaled = |e: Vec3<T>, t: T| {
+        Vec3::new(
+            T::mul_unit(e.x, t),
+            T::mul_unit(e.y, t),
+            T::mul_unit(e.z, t),
+        )
+    };
     let Some(start) = verts
         .iter()
         .position(|&v| height(v.offset_from(p)) >= T::ZERO)
@@ -272,19 +281,20 @@ where
             }
             (false, true) => {
                 let t = (d0 / (d0 - d1)).clamp01();
-                let x = u0 + edge * t;
+                let et = scaled(edge, t);
+                let x = u0 + et;
                 near |= near_point(x);
                 f(ClippedEdge {
                     ua: a0,
                     ub: x,
-                    d: edge * t,
+                    d: et,
                     horizon: false,
                 });
                 exit = Some(x);
             }
             (true, false) => {
                 let t = (d0 / (d0 - d1)).clamp01();
-                let x = u0 + edge * t;
+                let x = u0 + scaled(edge, t);
                 near |= near_point(x);
                 if let Some(e) = exit.take() {
                     f(ClippedEdge {
@@ -297,7 +307,7 @@ where
                 f(ClippedEdge {
                     ua: x,
                     ub: u1,
-                    d: edge * (T::ONE - t),
+                    d: scaled(edge, T::ONE - t),
                     horizon: false,
                 });
                 a0 = u1;
