@@ -71,7 +71,9 @@ fn phong_arc_terms<T: Real>(
     let w = if even {
         // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
         // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
-        T::TWO * T::mul_small(rg, sin_x).atan2(T::ONE + cos_x + ra + rb)
+        // (Twice the angle as a sum: the bits of `2 *`, without a product.)
+        let half = T::mul_small(rg, sin_x).atan2(T::ONE + cos_x + ra + rb);
+        half + half
     } else {
         T::ZERO
     };
