@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 109 | 239 | 1135 | 1334 | 924 | 1053 |
-//! | `sphere_lambert_hermite` | 117 | 248 | 1126 | 1331 | 914 | 1058 |
-//! | `polygon_lambert` | 495 | 1089 | 3881 | 4491 | 3389 | 3794 |
-//! | `phong_sphere` | 493 | 616 | 5716 | 5884 | 4409 | 4529 |
-//! | `phong_polygon` | 1894 | 2638 | 12107 | 12934 | 8033 | 8513 |
+//! | `sphere_lambert` | 109 | 239 | 1092 | 1299 | 886 | 1030 |
+//! | `sphere_lambert_hermite` | 117 | 248 | 1106 | 1312 | 903 | 1047 |
+//! | `polygon_lambert` | 495 | 1089 | 3886 | 4496 | 3395 | 3800 |
+//! | `phong_sphere` | 493 | 616 | 5094 | 5201 | 4053 | 4187 |
+//! | `phong_polygon` | 1894 | 2638 | 11857 | 12670 | 7851 | 8314 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole

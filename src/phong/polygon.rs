@@ -357,8 +357,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 12 107 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 12 106 to 14 878 where the reflection meets the quad; 13 448 with every edge from
+    /// 11 857 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 11 856 to 14 592 where the reflection meets the quad; 12 107 before the fan triangle's
+    /// and the horizon crossings' products lost their saturation tests; 13 448 with every edge from
     /// the offsets' products; in a build of the cases alone, at m = 15, 12 826 against 13 303
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
