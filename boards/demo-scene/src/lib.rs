@@ -174,6 +174,14 @@ pub struct Demo<'a, T> {
     emissive: DrawOptions<T>,
     /// Gamma 2 (one square root per channel; within 0.05 of sRGB), tabulated.
     table: &'a EncodeTable,
+    /// The sphere's transform of the frame its vertex data were computed for (`None`
+    /// before the first): it stands still, so a frame with the same transform (every frame:
+    /// [`Demo::frame`] builds it from constants, so the same bits) keeps them, and the
+    /// sphere's next shade skips finding its visible vertices too (`PreparedMesh::shade`).
+    sphere_at: Option<Affine<T>>,
+    /// The sphere was transformed this frame (by [`Demo::transform_share`]): its screen data
+    /// go through the exchange; otherwise both cores already hold them.
+    sphere_moved: bool,
 }
 
 /// The scene's lit objects (for [`Demo::set_shading`]).
@@ -313,6 +321,8 @@ impl<'a, T: Real> Demo<'a, T> {
             lit: [lit, lit],
             emissive,
             table,
+            sphere_at: None,
+            sphere_moved: false,
         })
     }
 
@@ -382,10 +392,15 @@ impl<'a, T: Real> Demo<'a, T> {
         })
     }
 
-    /// Transforms and projects every vertex of the three objects for `frame` ([`Stage::Transform`]).
+    /// Transforms and projects every vertex of the three objects for `frame` ([`Stage::Transform`]),
+    /// but the sphere's where its transform is the one its vertex data already hold (it
+    /// stands still: from the second frame on; the same pixels, its data being those a new
+    /// transform would give).
     pub fn transform(&mut self, frame: &Frame<T>) {
         let [s, t, l] = &frame.transforms;
-        self.sphere.transform(&self.camera, s);
+        if self.sphere_moves(s) {
+            self.sphere.transform(&self.camera, s);
+        }
         self.torus.transform(&self.camera, t);
         // The lamp's shader is its colour alone: no normals.
         self.lamp.transform_unlit(&self.camera, l);
@@ -400,9 +415,21 @@ impl<'a, T: Real> Demo<'a, T> {
         let [s, t, l] = &frame.transforms;
         let cores = cores.max(1);
         let mine = |i: usize| i % cores == core;
-        self.sphere.transform_some(&self.camera, s, true, mine);
+        // (Every core decides the same from the same frames: each skips the sphere, and the
+        // exchange leaves it out, in the same frames.)
+        if self.sphere_moves(s) {
+            self.sphere.transform_some(&self.camera, s, true, mine);
+        }
         self.torus.transform_some(&self.camera, t, true, mine);
         self.lamp.transform_some(&self.camera, l, false, mine);
+    }
+
+    /// Whether the sphere needs the transform `s` (not the one its vertex data hold); records
+    /// `s` as the one they will hold.
+    fn sphere_moves(&mut self, s: &Affine<T>) -> bool {
+        self.sphere_moved = self.sphere_at.as_ref() != Some(s);
+        self.sphere_at = Some(*s);
+        self.sphere_moved
     }
 
     /// Writes the screen data of this core's share of the vertices into `exchange` (after
@@ -417,7 +444,9 @@ impl<'a, T: Real> Demo<'a, T> {
                 }
             }
         };
-        copy(&mut exchange.sphere, &self.sphere);
+        if self.sphere_moved {
+            copy(&mut exchange.sphere, &self.sphere);
+        }
         copy(&mut exchange.torus, &self.torus);
         copy(&mut exchange.lamp, &self.lamp);
     }
@@ -428,8 +457,10 @@ impl<'a, T: Real> Demo<'a, T> {
         let cores = cores.max(1);
         let theirs = |i: usize| i % cores == core;
         let camera = &self.camera;
-        self.sphere
-            .set_screen(camera, exchange.sphere.iter().copied(), theirs);
+        if self.sphere_moved {
+            self.sphere
+                .set_screen(camera, exchange.sphere.iter().copied(), theirs);
+        }
         self.torus
             .set_screen(camera, exchange.torus.iter().copied(), theirs);
         self.lamp

@@ -169,3 +169,76 @@ fn every_position_fits_fixed_point() {
         demo.frame(n).unwrap();
     }
 }
+
+/// Every band of frame `n` as `demo` draws it (after its transform and shade, whichever way
+/// they were done), as one image.
+fn drawn(demo: &Demo<'_, Fixed22>, frame: &demo_scene::Frame<Fixed22>) -> Vec<Rgb565> {
+    let rows = (BAND_PIXELS / WIDTH as usize) as u16;
+    let (mut pixels, mut depth) = (vec![Rgb565(0); BAND_PIXELS], vec![0u16; BAND_PIXELS]);
+    let mut out = Vec::with_capacity(FRAME_PIXELS);
+    for y0 in (0..HEIGHT).step_by(rows as usize) {
+        let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, y0).unwrap();
+        band.clear(BACKGROUND);
+        demo.draw_band(frame, &mut band, &mut DrawStats::default())
+            .unwrap();
+        let take = (FRAME_PIXELS - out.len()).min(BAND_PIXELS);
+        out.extend_from_slice(&band.pixels()[..take]);
+    }
+    out
+}
+
+#[test]
+fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
+    // The sphere stands still: from the second frame on, `Demo::transform` and
+    // `Demo::transform_share` keep its vertex data (and the exchange leaves them out), and
+    // its shade skips finding the visible vertices. Every frame must still be the pixels of
+    // a `Demo` that never drew before, on one core and on two (the firmware's exchange,
+    // here between two `Demo`s on the host), Gouraud and (one core) per pixel.
+    use demo_scene::{ColourExchange, ScreenExchange};
+    let frames = [0, 1, 2, PERIOD / 3, PERIOD / 3 + 1, PERIOD - 1, 0];
+    for shading in [Shading::Gouraud, Shading::PerPixel] {
+        let mut kept_buffers = Box::new(MeshBuffers::<Fixed22>::new());
+        let mut kept = Demo::new(&mut kept_buffers, shading).unwrap();
+        for n in frames {
+            let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
+            let mut fresh = Demo::new(&mut fresh_buffers, shading).unwrap();
+            let frame = fresh.frame(n).unwrap();
+            let calls = fresh.prepare(&frame);
+            let want = drawn(&fresh, &frame);
+            assert_eq!(kept.prepare(&frame), calls, "{shading:?} frame {n}");
+            assert!(drawn(&kept, &frame) == want, "{shading:?} frame {n}, one core");
+        }
+    }
+    let (mut b0, mut b1) = (
+        Box::new(MeshBuffers::<Fixed22>::new()),
+        Box::new(MeshBuffers::<Fixed22>::new()),
+    );
+    let mut cores = [
+        Demo::new(&mut b0, Shading::Gouraud).unwrap(),
+        Demo::new(&mut b1, Shading::Gouraud).unwrap(),
+    ];
+    let mut screen = Box::new(ScreenExchange::<Fixed22>::new());
+    let mut colours = Box::new([ColourExchange::new(), ColourExchange::new()]);
+    for n in frames {
+        let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
+        let mut fresh = Demo::new(&mut fresh_buffers, Shading::Gouraud).unwrap();
+        let frame = fresh.frame(n).unwrap();
+        let calls = fresh.prepare(&frame);
+        let want = drawn(&fresh, &frame);
+        for (k, demo) in cores.iter_mut().enumerate() {
+            demo.transform_share(&frame, k, 2);
+            demo.export_screen(&mut screen, k, 2);
+        }
+        let mut shared = 0;
+        for (k, demo) in cores.iter_mut().enumerate() {
+            demo.import_screen(&screen, 1 - k, 2);
+            shared += demo.shade_share(&frame, k, 2);
+            demo.export_colours(&mut colours[k]);
+        }
+        assert_eq!(shared, calls, "frame {n}");
+        for (k, demo) in cores.iter_mut().enumerate() {
+            demo.import_colours(&colours[1 - k], 1 - k, 2);
+            assert!(drawn(demo, &frame) == want, "frame {n}, core {k} of two");
+        }
+    }
+}

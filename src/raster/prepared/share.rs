@@ -120,6 +120,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
         }
         self.out_of_range = beyond;
         self.rows_cull = None;
+        self.visible = None;
         self.rows = screen_rows(camera, clipped, top, bottom);
     }
 
