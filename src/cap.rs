@@ -42,7 +42,15 @@ use crate::{Error, Real, UnitVec3, Vec3};
 #[inline]
 pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
     if c >= ss {
-        T::mul_small(T::mul_small(c, ss), ss).clamp01()
+        // `c >= ss >= 0` (`sin sigma`, validated): the products are not negative (in fixed
+        // point their floors neither), so only the upper end of `clamp01` can act (`c` is
+        // a dot product of unit vectors, 1 within rounding): the same bits.
+        let e = T::mul_small(T::mul_small(c, ss), ss);
+        if e < T::ONE {
+            e
+        } else {
+            T::ONE
+        }
     } else if c <= -ss {
         T::ZERO
     } else {

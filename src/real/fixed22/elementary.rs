@@ -222,6 +222,20 @@ pub(super) const RSQRT_SEED: [(u32, i16, u16); 24] = [
     (545461221, -4294, 100),
 ];
 
+/// [`RSQRT_SEED`] indexed by `m >> 27` itself (8 to 31 for `m` in `[2^30, 2^32)`; below 8,
+/// for a caller's wrong exponent, its first entry, as before): no subtraction and no bounds
+/// test (`m >> 27` of a `u32` is below 32), 3 Cortex-M0 instructions fewer in every square
+/// root and normalization, for 64 bytes.
+static RSQRT_SEED_BY_TOP: [(u32, i16, u16); 32] = {
+    let mut t = [RSQRT_SEED[0]; 32];
+    let mut i = 0;
+    while i < RSQRT_SEED.len() {
+        t[i + 8] = RSQRT_SEED[i];
+        i += 1;
+    }
+    t
+};
+
 /// The shared core of `sqrt`, `rsqrt` and `sqrt_rsqrt`: for `v > 0`, `(m, j, y)` with
 /// `v = (m / 2^30) 4^j`, `m` in `[2^30, 2^32)` and `y = 2^32 / sqrt(m / 2^30)` to a relative
 /// 2^-29.5 (`y < 2^32`). A quadratic start from [`RSQRT_SEED`] (2^-15.8) and one Newton step
@@ -240,10 +254,7 @@ pub(super) fn rsqrt_core_at(v: u32, j2: u32) -> (u32, u32, u32) {
     let m = v << (30 - j2);
     // m in [2^30, 2^32): the index is in [0, 24) (`get`, so that no panic path is compiled;
     // the first entry for a caller's wrong `j2`).
-    let (c0, c1, c2) = match RSQRT_SEED.get(((m >> 27) as usize).wrapping_sub(8)) {
-        Some(&e) => e,
-        None => RSQRT_SEED[0],
-    };
+    let (c0, c1, c2) = RSQRT_SEED_BY_TOP[(m >> 27) as usize];
     let t = ((m >> 11) & 0xFFFF) as i32;
     // |c1| < 2^15, t < 2^16: every product fits an i32.
     let inner = i32::from(c1) + ((i32::from(c2) * t) >> 16);
