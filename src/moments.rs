@@ -130,7 +130,8 @@
 
 use crate::lobe::MAX_EXPONENT;
 use crate::polygon::{
-    for_each_clipped_edge, near_limit, ApexFan, ClippedEdge, PolygonLight, LAMBERT_NEAR_LOG2,
+    for_each_clipped_edge, near_limit, ApexFan, ClippedEdge, PolygonLight, CROSSING,
+    LAMBERT_NEAR_LOG2,
 };
 use crate::{Error, Real, Vec3};
 
@@ -211,6 +212,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                     ub: arc.ub,
                     d: arc.d,
                     horizon: false,
+                    ia: CROSSING,
+                    ib: CROSSING,
                 });
             }
             acc.add(&arc);
@@ -281,6 +284,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                         ub: arc.ub,
                         d: arc.d,
                         horizon: arc.circle == Circle::First,
+                        ia: CROSSING,
+                        ib: CROSSING,
                     });
                 }
             }
@@ -360,6 +365,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 ub: b - p,
                 d: b - a,
                 horizon: false,
+                ia: CROSSING,
+                ib: CROSSING,
             });
         }
         (sigma * fan.total())

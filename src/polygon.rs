@@ -54,21 +54,27 @@ use heapless::Vec;
 #[cfg(any(feature = "phong", feature = "moments"))]
 mod arc;
 mod clip;
+mod dirs;
+#[cfg(feature = "phong")]
+pub(crate) use dirs::VertexDirs;
+pub(crate) use dirs::{Uncached, VertexDirections};
 mod edge;
 #[cfg(feature = "phong")]
 mod negligible;
 mod validate;
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use arc::{arc_axis_form, cos_power_sums};
-#[cfg(any(feature = "phong", feature = "moments"))]
-pub(crate) use clip::ClippedEdge;
 pub(crate) use clip::{for_each_clipped_edge, for_each_unclipped_edge, ApexFan};
+#[cfg(any(feature = "phong", feature = "moments"))]
+pub(crate) use clip::{ClippedEdge, CROSSING};
 #[cfg(feature = "phong")]
 pub(crate) use edge::offset_products;
 #[cfg(feature = "phong")]
 pub(crate) use edge::products_in_range;
+#[cfg(all(test, feature = "phong"))]
+pub(crate) use negligible::phong_negligible;
 #[cfg(feature = "phong")]
-pub(crate) use negligible::{floats_ball_below, phong_negligible};
+pub(crate) use negligible::{floats_ball_below, phong_negligible_with};
 use validate::validate_polygon;
 pub(crate) use validate::validate_polygon_f64;
 
@@ -288,9 +294,22 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         n: impl Direction<T>,
         plane: bool,
     ) -> Result<T, Error> {
+        self.lambert_at_with(p, n, plane, &mut Uncached)
+    }
+
+    /// [`PolygonLight::lambert_at`] with the vertices' unit directions from `p` taken from
+    /// (and added to) `dirs`, which the sample's Phong term shares ([`VertexDirs`]).
+    #[inline]
+    pub(crate) fn lambert_at_with(
+        &self,
+        p: Vec3<T>,
+        n: impl Direction<T>,
+        plane: bool,
+        dirs: &mut impl VertexDirections<T>,
+    ) -> Result<T, Error> {
         let n = n.try_unit("n")?.into_inner();
         if T::RESOLUTION > T::ZERO {
-            return lambert_fixed(&self.verts, self.normal, p, n, plane);
+            return lambert_fixed(&self.verts, self.normal, p, n, plane, dirs);
         }
         if plane {
             return Ok(T::ZERO);
@@ -483,6 +502,7 @@ fn lambert_fixed<T: Real>(
     p: Vec3<T>,
     n: Vec3<T>,
     plane: bool,
+    dirs: &mut impl VertexDirections<T>,
 ) -> Result<T, Error> {
     let r_min = near_limit::<T>(LAMBERT_NEAR_LOG2);
     if plane {
@@ -494,11 +514,11 @@ fn lambert_fixed<T: Real>(
     // A ring wholly above the horizon: the walk's terms and tests, without its clipping state
     // (`for_each_unclipped_edge`; every vertex's distance tested once, as the walk does).
     // Each edge within a right angle by the arc ratio from its endpoints' unit directions
-    // (`edge::unit_ratio_term`), each direction normalized once: the first vertex's at the
-    // first edge, kept for the closing one; the others by the arc-tangent form.
+    // (`edge::unit_ratio_term`), each direction normalized once (`dirs`, shared with the
+    // sample's Phong term): the first vertex's at the first edge, kept for the closing one;
+    // the others by the arc-tangent form.
     let (mut sum, mut beside, mut near) = (T::ZERO, false, false);
     let kv = [n.x, n.y, n.z];
-    let unit = |u: Vec3<T>| T::unit3([u.x, u.y, u.z]);
     let (mut first, mut a_dir, mut edges_left) = (None, None, verts.len());
     let whole = for_each_unclipped_edge(
         verts,
@@ -508,11 +528,16 @@ fn lambert_fixed<T: Real>(
         |ua, ub, d| {
             near |= T::all_within([ub.x, ub.y, ub.z], r_min);
             if edges_left == verts.len() {
-                first = unit(ua);
+                first = dirs.get(0, ua).map(|a| a.array());
                 a_dir = first;
             }
             edges_left = edges_left.saturating_sub(1);
-            let b_dir = if edges_left == 0 { first } else { unit(ub) };
+            // (`ub` is vertex `len - edges_left`, or vertex 0 for the closing edge.)
+            let b_dir = if edges_left == 0 {
+                first
+            } else {
+                dirs.get(verts.len() - edges_left, ub).map(|b| b.array())
+            };
             let ratio = a_dir
                 .zip(b_dir)
                 .and_then(|(a, b)| edge::unit_ratio_term(a, b, kv));

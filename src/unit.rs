@@ -120,7 +120,7 @@ impl<T: Real> UnitVec3<T> {
 
     #[inline(always)]
     #[allow(dead_code)] // as `dot_unit`
-    fn array(self) -> [T; 3] {
+    pub(crate) fn array(self) -> [T; 3] {
         [self.0.x, self.0.y, self.0.z]
     }
 

@@ -340,7 +340,9 @@ fn culled_and_unculled_renders_are_identical() {
 }
 
 /// A polygon light's `diffuse_and_phong` (one range check and one test against its plane for
-/// both terms) is the two calls bit for bit: random points around a quad, points in its plane
+/// both terms, and in fixed point each vertex's unit direction normalized once for the
+/// Lambert term, the Phong term's negligibility test and its walk) is the two calls bit for
+/// bit: random points around a quad, points in its plane
 /// over and beside the face, near its vertices (fixed point: `Unresolved`, 0 from both), and
 /// beyond the fixed-point coordinate limit; even and odd exponents.
 fn polygon_terms_in_one_call<T: Real>(seed: u64) {

@@ -1,6 +1,8 @@
 //! The [`Illuminant`](super::Illuminant) impl of the polygon light (both terms in one call).
 
 use super::*;
+#[cfg(feature = "phong")]
+use crate::polygon::VertexDirs;
 use crate::PolygonLight;
 
 impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
@@ -37,9 +39,17 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
             return (black(), black());
         }
         let plane = self.in_plane(p);
+        // The vertices' unit directions from `p`, each normalized once for both terms.
+        let mut dirs = VertexDirs::<T, N>::new();
         (
-            grey(self.lambert_at(p, n, plane).unwrap_or(T::ZERO)),
-            grey(self.phong_at(lobe, p, r, plane).unwrap_or(T::ZERO)),
+            grey(
+                self.lambert_at_with(p, n, plane, &mut dirs)
+                    .unwrap_or(T::ZERO),
+            ),
+            grey(
+                self.phong_at_with(lobe, p, r, plane, &mut dirs)
+                    .unwrap_or(T::ZERO),
+            ),
         )
     }
 }

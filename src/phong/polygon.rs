@@ -6,8 +6,8 @@
 use crate::lobe::negligible_terms;
 use crate::polygon::{
     arc_axis_form, cos_power_sums, floats_ball_below, for_each_clipped_edge, near_limit,
-    offset_products, phong_near_log2, phong_negligible, products_in_range, ClippedEdge,
-    PolygonLight,
+    offset_products, phong_near_log2, phong_negligible_with, products_in_range, ClippedEdge,
+    PolygonLight, Uncached, VertexDirections, CROSSING,
 };
 use crate::unit::Direction;
 use crate::{Error, PhongLobe, Real, UnitVec3, Vec3};
@@ -251,6 +251,20 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         r: impl Direction<T>,
         plane: bool,
     ) -> Result<T, Error> {
+        self.phong_at_with(lobe, p, r, plane, &mut Uncached)
+    }
+
+    /// [`PolygonLight::phong_at`] with the vertices' unit directions from `p` taken from (and
+    /// added to) `dirs`, which the sample's Lambert term shares ([`VertexDirs`]).
+    #[inline(always)]
+    pub(crate) fn phong_at_with<D: VertexDirections<T>>(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        r: impl Direction<T>,
+        plane: bool,
+        dirs: &mut D,
+    ) -> Result<T, Error> {
         let ru = r.try_unit("r")?;
         let r = ru.into_inner();
         let m = lobe.m;
@@ -262,7 +276,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         // Fixed point, f32 and Fast32: a term provably below 2^-24 is 0
         // (`polygon/negligible.rs`).
         if T::RESOLUTION > T::ZERO {
-            if phong_negligible(self.vertices(), self.ball(), p, ru, lobe, r_min) {
+            if phong_negligible_with(self.vertices(), self.ball(), p, ru, lobe, r_min, dirs) {
                 return Ok(T::ZERO);
             }
         } else if negligible_terms::<T>() && floats_ball_below(self.ball(), p, ru, lobe) {
@@ -288,11 +302,22 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 }
                 return;
             }
+            // (A vertex's direction from `dirs`, which the Lambert term and the negligibility
+            // test may have normalized already; a crossing's its own.)
+            // (Without a cache the call of `to_unit`, as before it: measured cheaper in this
+            // walk than the inlined normalization.)
+            let mut unit = |i: usize, u: Vec3<T>| {
+                if D::CACHED && i != CROSSING {
+                    dirs.get(i, u)
+                } else {
+                    u.to_unit()
+                }
+            };
             let start = match last {
                 Some((at, dir, rd)) if at == e.ua => Some((dir, rd)),
-                _ => e.ua.to_unit().map(|a| (a, ru.dot_unit(a))),
+                _ => unit(e.ia, e.ua).map(|a| (a, ru.dot_unit(a))),
             };
-            let end = e.ub.to_unit().map(|b| (b, ru.dot_unit(b)));
+            let end = unit(e.ib, e.ub).map(|b| (b, ru.dot_unit(b)));
             last = end.map(|(b, rb)| (e.ub, b, rb));
             // An edge whose coordinates or products leave the normal range at this scale
             // (below TINY or beyond 1/TINY in absolute terms): the same edge scaled by a power

@@ -18,7 +18,17 @@ pub(crate) struct ClippedEdge<T> {
     pub(crate) ub: Vec3<T>,
     pub(crate) d: Vec3<T>,
     pub(crate) horizon: bool,
+    /// The index of the vertex `ua` is the offset of, or [`CROSSING`] (a horizon crossing;
+    /// always for the floats, whose walks do not read it).
+    #[allow(dead_code)] // read by the Phong walk only
+    pub(crate) ia: usize,
+    /// The same for `ub`.
+    #[allow(dead_code)]
+    pub(crate) ib: usize,
 }
+
+/// [`ClippedEdge`]'s vertex index of a point that is no vertex (a horizon crossing).
+pub(crate) const CROSSING: usize = usize::MAX;
 
 impl<T: Real> ClippedEdge<T> {
     /// The signed angle of a horizon arc about `k`, in (-pi, pi]: the projection of the
@@ -87,6 +97,9 @@ impl<T: Real> ClippedEdge<T> {
             ub,
             d,
             horizon: self.horizon,
+            // (Scaled: no longer the vertices' own offsets.)
+            ia: CROSSING,
+            ib: CROSSING,
         })
     }
 }
@@ -251,8 +264,12 @@ where
     let (mut v0, mut i1) = (first, start);
     let mut u0 = v0.offset_from(p);
     let mut d0 = height(u0);
-    // The start of the current clipped edge (a vertex or a crossing up).
+    // The start of the current clipped edge (a vertex or a crossing up), and its vertex
+    // index (or `CROSSING`).
     let mut a0 = u0;
+    let mut ia0 = start;
+    // (The floats' walks read no index: a constant there, so that none is carried.)
+    let index = |i: usize| if T::RESOLUTION > T::ZERO { i } else { CROSSING };
     let mut below0 = false;
     let mut exit: Option<Vec3<T>> = None;
     // (Every vertex is `u1` once, the start last.)
@@ -276,8 +293,10 @@ where
                     ub: u1,
                     d: edge,
                     horizon: false,
+                    ia: index(ia0),
+                    ib: index(i1),
                 });
-                a0 = u1;
+                (a0, ia0) = (u1, i1);
             }
             (false, true) => {
                 let t = (d0 / (d0 - d1)).clamp01();
@@ -289,6 +308,8 @@ where
                     ub: x,
                     d: et,
                     horizon: false,
+                    ia: index(ia0),
+                    ib: CROSSING,
                 });
                 exit = Some(x);
             }
@@ -302,6 +323,8 @@ where
                         ub: x,
                         d: x - e,
                         horizon: true,
+                        ia: CROSSING,
+                        ib: CROSSING,
                     });
                 }
                 f(ClippedEdge {
@@ -309,8 +332,10 @@ where
                     ub: u1,
                     d: scaled(edge, T::ONE - t),
                     horizon: false,
+                    ia: CROSSING,
+                    ib: index(i1),
                 });
-                a0 = u1;
+                (a0, ia0) = (u1, i1);
             }
             (true, true) => {}
         }

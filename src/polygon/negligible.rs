@@ -64,10 +64,13 @@
 //! 32, 616 426 -> 595 197 instructions, every result bit the same. The RP2040 demo's
 //! single-core frame 1: shading 48.9 -> 45.5 ms (rp2040js, `boards/rp2040-emu/check.sh`).
 
+#[cfg(test)]
+use super::Uncached;
+use super::VertexDirections;
 use crate::lobe::PhongLobe;
 use crate::{Real, UnitVec3, Vec3};
 
-/// The most vertices [`phong_negligible`] tests (a larger polygon is never proven negligible).
+/// The most vertices [`phong_negligible_with`] tests (a larger polygon is never proven negligible).
 const MAX_VERTICES: usize = 8;
 
 /// Whether the Phong term of the polygon `verts` at `p` about `r` is provably at most `2^-24`
@@ -85,14 +88,18 @@ const MAX_VERTICES: usize = 8;
 ///
 /// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 200 to 680 instructions where the
 /// quick rejection stops it, about 3 000 for the whole test (the module doc).
+///
+/// The vertices' unit directions from `p` are taken from `dirs` (shared with the sample's
+/// other terms: `VertexDirs`; or `Uncached`).
 #[inline(never)]
-pub(crate) fn phong_negligible<T: Real>(
+pub(crate) fn phong_negligible_with<T: Real>(
     verts: &[Vec3<T>],
     ball: Option<(Vec3<T>, T)>,
     p: Vec3<T>,
     r: UnitVec3<T>,
     lobe: &PhongLobe<T>,
     r_min: T,
+    dirs: &mut impl VertexDirections<T>,
 ) -> bool {
     let (lim, lim2, _) = lobe.negligible_cos;
     let n = verts.len();
@@ -133,13 +140,13 @@ pub(crate) fn phong_negligible<T: Real>(
         }
     }
     // Every vertex's direction and its cosine, below the threshold.
-    let mut dirs = [([T::ZERO; 3], T::ZERO); MAX_VERTICES];
-    for (v, entry) in verts.iter().zip(dirs.iter_mut()) {
+    let mut unit_dirs = [([T::ZERO; 3], T::ZERO); MAX_VERTICES];
+    for (i, (v, entry)) in verts.iter().zip(unit_dirs.iter_mut()).enumerate() {
         let u = v.offset_from(p);
         if T::all_within(arr(u), near) {
             return false;
         }
-        let Some(a) = u.to_unit() else {
+        let Some(a) = dirs.get(i, u) else {
             return false;
         };
         let c = dot(rv, arr(*a));
@@ -148,11 +155,25 @@ pub(crate) fn phong_negligible<T: Real>(
         }
         *entry = (arr(*a), c);
     }
-    let dirs = &dirs[..n.min(MAX_VERTICES)];
-    edges_below(dirs, rv, lim2)
+    let unit_dirs = &unit_dirs[..n.min(MAX_VERTICES)];
+    edges_below(unit_dirs, rv, lim2)
 }
 
-/// The ball half of [`phong_negligible`]'s test: whether every direction from `p` into the
+/// [`phong_negligible_with`] alone (the tests'; [`Uncached`]).
+#[cfg(test)]
+#[inline]
+pub(crate) fn phong_negligible<T: Real>(
+    verts: &[Vec3<T>],
+    ball: Option<(Vec3<T>, T)>,
+    p: Vec3<T>,
+    r: UnitVec3<T>,
+    lobe: &PhongLobe<T>,
+    r_min: T,
+) -> bool {
+    phong_negligible_with(verts, ball, p, r, lobe, r_min, &mut Uncached)
+}
+
+/// The ball half of [`phong_negligible_with`]'s test: whether every direction from `p` into the
 /// ball of centre `p + w` and radius `rho` makes an angle of at least `gamma` with `r`,
 /// `cos gamma = lim` and `sin gamma <= sin_lim`. The directions into the ball fill a cone of
 /// half-angle `beta`, `sin beta = rho/|w|` (`p` outside it); the angle `alpha` between `r`
@@ -192,7 +213,7 @@ fn cone_below<T: Real>(w: Vec3<T>, rho: T, rv: [T; 3], (_, lim2, sin_lim): (T, T
     l < T::from_u32(16) && T::mul_small(l, l) < T::mul_unit(s2, lim2)
 }
 
-/// [`phong_negligible`] for the floats: the ball's test alone, in a scale-free form of
+/// [`phong_negligible_with`] for the floats: the ball's test alone, in a scale-free form of
 /// [`cone_below`]'s (whose thresholds are for fixed point's range). With `w` the ball's
 /// centre from `p`, `S^2 = |w|^2 - rho^2` at least `|w|^2/16` (the cone's half-angle at most
 /// 75 degrees, so `lim S > 0.06 |w|`, far above f32's rounding of `|w|` times a few `2^-24`),
@@ -224,7 +245,7 @@ pub(crate) fn floats_ball_below<T: Real>(
     !(l > T::ZERO) || l * l < lim2 * s2 * T::from_f64(1.0 - 1.0 / 1024.0)
 }
 
-/// The edge half of [`phong_negligible`]'s test on every vertex's `(a, r.a)` in ring order:
+/// The edge half of [`phong_negligible_with`]'s test on every vertex's `(a, r.a)` in ring order:
 /// each edge's own maximum of `r.a` below the threshold (squared, `lim2`), and one edge whose
 /// great circle separates `r` from the other vertices.
 fn edges_below<T: Real>(dirs: &[([T; 3], T)], rv: [T; 3], lim2: T) -> bool {
