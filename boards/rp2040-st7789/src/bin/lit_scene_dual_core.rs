@@ -30,16 +30,22 @@
 //! objects' middle take about 1 M cycles each, the empty ones 20 000), and every band takes
 //! the SPI 123 000 cycles to send, one at a time. Each core holds its drawn band until the SPI
 //! is free, so a core drawing cheap bands is paced by the SPI, while one drawing an expensive
-//! band leaves the SPI idle. So the bands (but the first and the last) are listed by their
-//! cost in the previous frame (triangle setups and pixels, from `DrawStats`; in frame 0, top
-//! to bottom), core 0 takes them from the expensive end and core 1 from the cheap end: core 1
-//! keeps the SPI busy while core 0 draws the expensive bands. Core 0 draws and sends the first
-//! band first and the last band last, so the display receives a frame from its top left to
-//! its bottom right pixel as if written in raster order. Measured in rp2040js, frame 1: 11.08
-//! M cycles when core 0 drew the even bands and sent every band; 10.52 M with each core
-//! sending its own even or odd bands; 10.41 M with the list (10.33 M in frame 2); 10.53 M
-//! with both cores taking from the expensive end (the SPI then idles at first and trails at
-//! the end).
+//! band leaves the SPI idle. So the bands (but the first and the last) are split between the
+//! cores by their cost in the previous frame (triangle setups and pixels, from `DrawStats`; in
+//! frame 0 all equal) with the longest-first rule ([`band_order`]): core 0 takes its share
+//! from its most expensive band down, core 1 its share from the cheapest up, so core 1 keeps
+//! the SPI busy while core 0 draws the expensive bands, and the two shares end together (a
+//! core that runs out goes on into the other's share from its own end). Core 0 draws and
+//! sends the first band first and the last band last, so the display receives a frame from
+//! its top left to its bottom right pixel as if written in raster order. Measured in
+//! rp2040js, frame 1 (an older build): 11.08 M cycles when core 0 drew the even bands and
+//! sent every band; 10.52 M with each core sending its own even or odd bands; 10.41 M with
+//! one list by cost, core 0 taking from its expensive end and core 1 from its cheap end until
+//! they met (10.33 M in frame 2); 10.53 M with both cores taking from the expensive end (the
+//! SPI then idles at first and trails at the end). Then frames 1 to 15 of `run.mjs --dual
+//! --frames 16`: 6 192 239 cycles a frame on average with that list, which left core 0
+//! waiting about 2 ms at the end for core 1's last band, and 5 980 067 with the split (frame
+//! 1 alone 5 944 049 -> 5 988 739, the one frame of the fifteen it does not shorten).
 //!
 //! **Empty bands go out during the shading.** A band that no object reaches this frame
 //! (`Demo::band_is_empty`, known once the screen data are swapped) is the background: core 1
@@ -134,9 +140,9 @@ type Sender = BandSender<
 struct Handoff {
     /// The frame core 1 is to draw next (set by core 0, taken by core 1).
     frame: Option<u32>,
-    /// The bands but the first and the last, cheapest first by the previous frame's `cost`
-    /// (set by core 0 at the start of a frame); `order[lo..hi]` are still to be drawn: core 1
-    /// takes `order[lo]`, core 0 `order[hi - 1]`.
+    /// The bands but the first and the last, in [`band_order`]'s order (set by core 0 at the
+    /// start of a frame); `order[lo..hi]` are still to be drawn: core 1 takes `order[lo]`,
+    /// core 0 `order[hi - 1]`.
     order: [u16; BANDS as usize - 2],
     lo: usize,
     hi: usize,
@@ -252,6 +258,32 @@ fn wait_for<R>(mut f: impl FnMut(&mut Handoff) -> Option<R>) -> R {
         }
         cortex_m::asm::wfe();
     }
+}
+
+/// The bands but the first and the last in the order the cores take them (core 1 from the
+/// front, core 0 from the back), from their `cost` in the last frame: split between the cores
+/// by the longest-first rule (each band, most expensive first, to the core with the less
+/// work so far; core 0 starts with the last band's cost), core 1's share first, cheapest
+/// first, then core 0's, cheapest first, so that core 0 starts on its most expensive band
+/// while core 1's cheap ones keep the SPI busy. A core that runs out of its share goes on
+/// into the other's from its own end (the other's least urgent band).
+fn band_order(cost: &[u32; BANDS as usize]) -> [u16; BANDS as usize - 2] {
+    let c = |k: u16| cost.get(usize::from(k)).copied().unwrap_or(0);
+    let mut by_cost: [u16; BANDS as usize - 2] = core::array::from_fn(|i| i as u16 + 1);
+    by_cost.sort_unstable_by_key(|&k| (core::cmp::Reverse(c(k)), k));
+    let (mut load0, mut load1) = (c(BANDS - 1), 0u32);
+    let mut core0 = 0u16;
+    for &k in &by_cost {
+        if load0 <= load1 {
+            load0 = load0.saturating_add(c(k));
+            core0 |= 1 << k;
+        } else {
+            load1 = load1.saturating_add(c(k));
+        }
+    }
+    let mut order = by_cost;
+    order.sort_unstable_by_key(|&k| (core0 & (1 << k) != 0, c(k), k));
+    order
 }
 
 /// A band's cost for the order of the next frame: its triangle setups (about 3000 cycles
@@ -370,8 +402,8 @@ fn send(sender: &mut Sender, band: &Band<'_, Rgb565>, k: u16) {
     }
 }
 
-/// Core 1: draws and sends bands of each frame core 0 asks for, from the cheap end of the
-/// list.
+/// Core 1: draws and sends bands of each frame core 0 asks for, from the front of the list
+/// (its share, cheapest first).
 fn core1(buffers: &'static mut MeshBuffers<Fixed22>) {
     let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
     // Core 1's band and depth band, in statics like core 0's (7.5 KiB each).
@@ -483,23 +515,20 @@ fn run() -> ! {
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
 
-    // 11. Each frame: list the bands by the last frame's cost and tell core 1 to start, then
-    //     draw the first band, the bands from the expensive end of the list, and the last
-    //     band, sending each. The first band is sent first and the last band last (core 1
-    //     sends only after the first), so the display receives each frame from its top left
-    //     to its bottom right pixel, as one written in raster order.
+    // 11. Each frame: split the bands by the last frame's cost and tell core 1 to start, then
+    //     draw the first band, the bands from the back of the list (most expensive first),
+    //     and the last band, sending each. The first band is sent first and the last band
+    //     last (core 1 sends only after the first), so the display receives each frame from
+    //     its top left to its bottom right pixel, as one written in raster order.
     let mut n: u32 = 0;
     let last = BANDS - 1;
     loop {
         let start = timer.get_counter_low();
         critical_section::with(|cs| {
             let mut h = HANDOFF.borrow_ref_mut(cs);
-            let cost = h.cost;
-            let mut order: [u16; BANDS as usize - 2] = core::array::from_fn(|i| i as u16 + 1);
-            order.sort_unstable_by_key(|&k| (cost[usize::from(k)], k));
-            h.order = order;
+            h.order = band_order(&h.cost);
             h.lo = 0;
-            h.hi = order.len();
+            h.hi = h.order.len();
             h.sent = 0;
             h.early = 0;
             h.stats = DrawStats::default();
