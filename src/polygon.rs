@@ -71,8 +71,6 @@ pub(crate) use clip::{ClippedEdge, CROSSING};
 pub(crate) use edge::offset_products;
 #[cfg(feature = "phong")]
 pub(crate) use edge::products_in_range;
-#[cfg(all(test, feature = "phong"))]
-pub(crate) use negligible::phong_negligible;
 #[cfg(feature = "phong")]
 pub(crate) use negligible::{floats_ball_below, phong_negligible_with};
 use validate::validate_polygon;

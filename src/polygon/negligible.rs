@@ -159,20 +159,6 @@ pub(crate) fn phong_negligible_with<T: Real>(
     edges_below(unit_dirs, rv, lim2)
 }
 
-/// [`phong_negligible_with`] alone (the tests'; [`Uncached`]).
-#[cfg(test)]
-#[inline]
-pub(crate) fn phong_negligible<T: Real>(
-    verts: &[Vec3<T>],
-    ball: Option<(Vec3<T>, T)>,
-    p: Vec3<T>,
-    r: UnitVec3<T>,
-    lobe: &PhongLobe<T>,
-    r_min: T,
-) -> bool {
-    phong_negligible_with(verts, ball, p, r, lobe, r_min, &mut Uncached)
-}
-
 /// The ball half of [`phong_negligible_with`]'s test: whether every direction from `p` into the
 /// ball of centre `p + w` and radius `rho` makes an angle of at least `gamma` with `r`,
 /// `cos gamma = lim` and `sin gamma <= sin_lim`. The directions into the ball fill a cone of
@@ -409,7 +395,15 @@ mod tests {
             };
             cases += 1;
             let r_min = crate::polygon::near_limit::<T>(crate::polygon::phong_near_log2(m));
-            if !phong_negligible(light.vertices(), light.ball(), pf, ru, &lobe, r_min) {
+            if !phong_negligible_with(
+                light.vertices(),
+                light.ball(),
+                pf,
+                ru,
+                &lobe,
+                r_min,
+                &mut Uncached,
+            ) {
                 continue;
             }
             proven += 1;

@@ -276,7 +276,15 @@ mod tests {
             };
             let r_min = crate::polygon::near_limit::<T>(crate::polygon::phong_near_log2(m));
             let (verts, ball) = (local.vertices(), local.ball());
-            if crate::polygon::phong_negligible(verts, ball, origin(), ru, &lobe, r_min) {
+            if crate::polygon::phong_negligible_with(
+                verts,
+                ball,
+                origin(),
+                ru,
+                &lobe,
+                r_min,
+                &mut crate::polygon::Uncached,
+            ) {
                 let r64 = Vec3::<f64>::from_f64(ru.into_inner().to_f64());
                 let term = exact.phong(&lobe64, p, r64);
                 if term > 0.0 {

@@ -8,8 +8,10 @@ use crate::raster::{
 };
 use crate::{Rgb, SphereLight, Vec3};
 
-#[test]
-fn triangle_rows_draw_the_same_pixels() {
+/// The tests' scene: a UV sphere (8 x 16) at the origin lit by a sphere light, plastic, sRGB.
+fn with_sphere_scene(
+    f: impl FnOnce(Mesh<'_, f32>, &Lit<'_, f32, SphereLight<f32>>, &EncodeTable<Rgb565>),
+) {
     let (mut verts, mut tris) = ([Vertex::default(); 17 * 9], [[0u16; 3]; 2 * 16 * 7]);
     let counts = mesh::uv_sphere(1.0f32, 8, 16, &mut verts, &mut tris).unwrap();
     let sphere = Mesh::new(&verts[..counts.vertices], &tris[..counts.triangles]).unwrap();
@@ -17,49 +19,61 @@ fn triangle_rows_draw_the_same_pixels() {
     let plastic = Material::new(Rgb::new(0.8, 0.3, 0.2), Rgb::splat(0.5), 16).unwrap();
     let shader = Lit::new(&lamp, &plastic);
     let table = EncodeTable::new::<f32>(Encoding::Srgb);
-    for (eye, cull) in [
-        (Vec3::new(0.0, 0.0, 4.0), Cull::Back),
-        (Vec3::new(0.5, 1.0, 2.5), Cull::None),
-        (Vec3::new(0.0, 0.3, 1.2), Cull::Back),
-    ] {
-        let camera = Camera::new(
-            eye,
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(0.0, 1.0, 0.0),
-            Projection::Perspective { fov_y: 0.9 },
-            64,
-            64,
-        )
-        .unwrap();
-        let mut opts = DrawOptions::new(Shading::Gouraud);
-        opts.cull = cull;
-        let mut frames = [[Rgb565(0); 64 * 64]; 2];
-        let mut counts = [0u32; 2];
-        for (k, frame) in frames.iter_mut().enumerate() {
-            let mut storage = [PreparedVertex::EMPTY; 17 * 9];
-            let mut rows = [TriangleRows::EMPTY; 2 * 16 * 7];
-            let mut m = if k == 0 {
-                PreparedMesh::new(sphere, &mut storage).unwrap()
-            } else {
-                PreparedMesh::with_triangle_rows(sphere, &mut storage, &mut rows).unwrap()
-            };
-            m.transform(&camera, &Affine::identity());
-            m.shade(&camera, &shader, &opts);
-            let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
-            let mut band = Band::new(&mut px, Some(&mut depth), 64, 0).unwrap();
-            for y0 in (0..64).step_by(8) {
-                band.move_to(y0);
-                band.clear(Rgb565(1));
-                let s = m.draw(&camera, &mut band, &shader, &opts, &table).unwrap();
-                counts[k] += s.rasterized;
-                let at = y0 as usize * 64;
-                frame[at..at + 64 * 8].copy_from_slice(band.pixels());
+    f(sphere, &shader, &table);
+}
+
+/// The tests' camera: looking at the origin from `eye`, `width` x 64 pixels.
+fn camera(eye: Vec3<f32>, width: u16) -> Camera<f32> {
+    Camera::new(
+        eye,
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        Projection::Perspective { fov_y: 0.9 },
+        width,
+        64,
+    )
+    .unwrap()
+}
+
+#[test]
+fn triangle_rows_draw_the_same_pixels() {
+    with_sphere_scene(|sphere, shader, table| {
+        for (eye, cull) in [
+            (Vec3::new(0.0, 0.0, 4.0), Cull::Back),
+            (Vec3::new(0.5, 1.0, 2.5), Cull::None),
+            (Vec3::new(0.0, 0.3, 1.2), Cull::Back),
+        ] {
+            let camera = camera(eye, 64);
+            let mut opts = DrawOptions::new(Shading::Gouraud);
+            opts.cull = cull;
+            let mut frames = [[Rgb565(0); 64 * 64]; 2];
+            let mut counts = [0u32; 2];
+            for (k, frame) in frames.iter_mut().enumerate() {
+                let mut storage = [PreparedVertex::EMPTY; 17 * 9];
+                let mut rows = [TriangleRows::EMPTY; 2 * 16 * 7];
+                let mut m = if k == 0 {
+                    PreparedMesh::new(sphere, &mut storage).unwrap()
+                } else {
+                    PreparedMesh::with_triangle_rows(sphere, &mut storage, &mut rows).unwrap()
+                };
+                m.transform(&camera, &Affine::identity());
+                m.shade(&camera, shader, &opts);
+                let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
+                let mut band = Band::new(&mut px, Some(&mut depth), 64, 0).unwrap();
+                for y0 in (0..64).step_by(8) {
+                    band.move_to(y0);
+                    band.clear(Rgb565(1));
+                    let s = m.draw(&camera, &mut band, shader, &opts, table).unwrap();
+                    counts[k] += s.rasterized;
+                    let at = y0 as usize * 64;
+                    frame[at..at + 64 * 8].copy_from_slice(band.pixels());
+                }
             }
+            assert_eq!(frames[0], frames[1]);
+            assert_eq!(counts[0], counts[1]);
+            assert!(frames[0].iter().filter(|p| p.0 != 1).count() > 200);
         }
-        assert_eq!(frames[0], frames[1]);
-        assert_eq!(counts[0], counts[1]);
-        assert!(frames[0].iter().filter(|p| p.0 != 1).count() > 200);
-    }
+    });
 }
 
 #[test]
@@ -67,86 +81,71 @@ fn a_mesh_shaded_again_without_a_transform_draws_as_a_fresh_one() {
     // The second shade of unchanged vertex data skips finding the visible vertices when the
     // culling and viewport are those of the first, and finds them again otherwise: every
     // step must give the calls and pixels of a mesh transformed and shaded afresh.
-    let (mut verts, mut tris) = ([Vertex::default(); 17 * 9], [[0u16; 3]; 2 * 16 * 7]);
-    let counts = mesh::uv_sphere(1.0f32, 8, 16, &mut verts, &mut tris).unwrap();
-    let sphere = Mesh::new(&verts[..counts.vertices], &tris[..counts.triangles]).unwrap();
-    let lamp = SphereLight::new(Vec3::new(2.0, 2.0, 3.0), 0.5).unwrap();
-    let plastic = Material::new(Rgb::new(0.8, 0.3, 0.2), Rgb::splat(0.5), 16).unwrap();
-    let shader = Lit::new(&lamp, &plastic);
-    let table = EncodeTable::new::<f32>(Encoding::Srgb);
-    let camera = |eye: Vec3<f32>, width: u16| {
-        Camera::new(
-            eye,
-            Vec3::new(0.0, 0.0, 0.0),
-            Vec3::new(0.0, 1.0, 0.0),
-            Projection::Perspective { fov_y: 0.9 },
-            width,
-            64,
-        )
-        .unwrap()
-    };
-    let (near, side) = (Vec3::new(0.3, 0.2, 1.6), Vec3::new(1.5, 0.4, 2.0));
-    let draw = |m: &PreparedMesh<'_, '_, f32>, cam: &Camera<f32>, opts: &DrawOptions<f32>| {
-        let mut frame = [Rgb565(0); 64 * 64];
-        let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
-        let width = usize::from(cam.width);
-        let mut band = Band::new(
-            &mut px[..width * 8],
-            Some(&mut depth[..width * 8]),
-            cam.width,
-            0,
-        )
-        .unwrap();
-        for y0 in (0..64).step_by(8) {
-            band.move_to(y0);
-            band.clear(Rgb565(1));
-            m.draw(cam, &mut band, &shader, opts, &table).unwrap();
-            let at = y0 as usize * width;
-            frame[at..at + width * 8].copy_from_slice(band.pixels());
+    with_sphere_scene(|sphere, shader, table| {
+        let (near, side) = (Vec3::new(0.3, 0.2, 1.6), Vec3::new(1.5, 0.4, 2.0));
+        let draw = |m: &PreparedMesh<'_, '_, f32>, cam: &Camera<f32>, opts: &DrawOptions<f32>| {
+            let mut frame = [Rgb565(0); 64 * 64];
+            let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
+            let width = usize::from(cam.width);
+            let mut band = Band::new(
+                &mut px[..width * 8],
+                Some(&mut depth[..width * 8]),
+                cam.width,
+                0,
+            )
+            .unwrap();
+            for y0 in (0..64).step_by(8) {
+                band.move_to(y0);
+                band.clear(Rgb565(1));
+                m.draw(cam, &mut band, shader, opts, table).unwrap();
+                let at = y0 as usize * width;
+                frame[at..at + width * 8].copy_from_slice(band.pixels());
+            }
+            frame
+        };
+        let mut storage = [PreparedVertex::EMPTY; 17 * 9];
+        let mut rows = [TriangleRows::EMPTY; 2 * 16 * 7];
+        let mut kept = PreparedMesh::with_triangle_rows(sphere, &mut storage, &mut rows).unwrap();
+        let mut transformed = None;
+        // (transform: the camera's eye and the model's offset in x, or none; the culling; the
+        // shading camera's eye and width.)
+        let steps = [
+            (Some((near, 0.0)), Cull::Back, near, 64),
+            (None, Cull::Back, near, 64),
+            (None, Cull::None, near, 64),
+            (None, Cull::None, near, 64),
+            (None, Cull::Back, near, 40),
+            (Some((side, 0.0)), Cull::Back, side, 64),
+            (Some((side, 0.6)), Cull::Back, side, 64),
+            (None, Cull::Back, side, 64),
+        ];
+        for (k, (transform, cull, eye, width)) in steps.into_iter().enumerate() {
+            let mut opts = DrawOptions::new(Shading::Gouraud);
+            opts.cull = cull;
+            if let Some(t) = transform {
+                transformed = Some(t);
+            }
+            let (t_eye, dx) = transformed.unwrap();
+            let placed = Affine::translation(Vec3::new(dx, 0.0, 0.0)).unwrap();
+            if transform.is_some() {
+                kept.transform(&camera(t_eye, 64), &placed);
+            }
+            let shading_camera = camera(eye, width);
+            let calls = kept.shade(&shading_camera, shader, &opts);
+            let mut fresh_storage = [PreparedVertex::EMPTY; 17 * 9];
+            let mut fresh_rows = [TriangleRows::EMPTY; 2 * 16 * 7];
+            let mut fresh =
+                PreparedMesh::with_triangle_rows(sphere, &mut fresh_storage, &mut fresh_rows)
+                    .unwrap();
+            fresh.transform(&camera(t_eye, 64), &placed);
+            assert_eq!(
+                calls,
+                fresh.shade(&shading_camera, shader, &opts),
+                "step {k}"
+            );
+            assert!(calls > 0, "step {k}");
+            let want = draw(&fresh, &shading_camera, &opts);
+            assert!(draw(&kept, &shading_camera, &opts) == want, "step {k}");
         }
-        frame
-    };
-    let mut storage = [PreparedVertex::EMPTY; 17 * 9];
-    let mut rows = [TriangleRows::EMPTY; 2 * 16 * 7];
-    let mut kept = PreparedMesh::with_triangle_rows(sphere, &mut storage, &mut rows).unwrap();
-    let mut transformed = None;
-    // (transform: the camera's eye and the model's offset in x, or none; the culling; the
-    // shading camera's eye and width.)
-    let steps = [
-        (Some((near, 0.0)), Cull::Back, near, 64),
-        (None, Cull::Back, near, 64),
-        (None, Cull::None, near, 64),
-        (None, Cull::None, near, 64),
-        (None, Cull::Back, near, 40),
-        (Some((side, 0.0)), Cull::Back, side, 64),
-        (Some((side, 0.6)), Cull::Back, side, 64),
-        (None, Cull::Back, side, 64),
-    ];
-    for (k, (transform, cull, eye, width)) in steps.into_iter().enumerate() {
-        let mut opts = DrawOptions::new(Shading::Gouraud);
-        opts.cull = cull;
-        if let Some(t) = transform {
-            transformed = Some(t);
-        }
-        let (t_eye, dx) = transformed.unwrap();
-        let placed = Affine::translation(Vec3::new(dx, 0.0, 0.0)).unwrap();
-        if transform.is_some() {
-            kept.transform(&camera(t_eye, 64), &placed);
-        }
-        let shading_camera = camera(eye, width);
-        let calls = kept.shade(&shading_camera, &shader, &opts);
-        let mut fresh_storage = [PreparedVertex::EMPTY; 17 * 9];
-        let mut fresh_rows = [TriangleRows::EMPTY; 2 * 16 * 7];
-        let mut fresh =
-            PreparedMesh::with_triangle_rows(sphere, &mut fresh_storage, &mut fresh_rows).unwrap();
-        fresh.transform(&camera(t_eye, 64), &placed);
-        assert_eq!(
-            calls,
-            fresh.shade(&shading_camera, &shader, &opts),
-            "step {k}"
-        );
-        assert!(calls > 0, "step {k}");
-        let want = draw(&fresh, &shading_camera, &opts);
-        assert!(draw(&kept, &shading_camera, &opts) == want, "step {k}");
-    }
+    });
 }
