@@ -39,17 +39,20 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
             return (black(), black());
         }
         let plane = self.in_plane(p);
-        // The vertices' unit directions from `p`, each normalized once for both terms.
-        let mut dirs = VertexDirs::<T, N>::new();
-        (
-            grey(
-                self.lambert_at_with(p, n, plane, &mut dirs)
-                    .unwrap_or(T::ZERO),
-            ),
-            grey(
-                self.phong_at_with(lobe, p, r, plane, &mut dirs)
-                    .unwrap_or(T::ZERO),
-            ),
-        )
+        // Fixed point: the vertices' unit directions from `p`, each normalized once for both
+        // terms. (The floats' Lambert term takes none, so only their Phong walk would ask:
+        // the cache would cost them and save nothing; measured on the Cortex-M4F, a per-pixel
+        // frame 4.8 % longer with it.)
+        if T::RESOLUTION > T::ZERO {
+            let mut dirs = VertexDirs::<T, N>::new();
+            let d = self.lambert_at_with(p, n, plane, &mut dirs);
+            let s = self.phong_at_with(lobe, p, r, plane, &mut dirs);
+            (grey(d.unwrap_or(T::ZERO)), grey(s.unwrap_or(T::ZERO)))
+        } else {
+            (
+                grey(self.lambert_at(p, n, plane).unwrap_or(T::ZERO)),
+                grey(self.phong_at(lobe, p, r, plane).unwrap_or(T::ZERO)),
+            )
+        }
     }
 }

@@ -10,8 +10,10 @@
 //! frames, whatever its speed.
 //!
 //! A frame ([`Demo::render_frame`]) is done in stages ([`Stage`]): the frame's lights and
-//! transforms; every vertex transformed and projected once ([`PreparedMesh::transform`]);
-//! with Gouraud shading, the light models at each visible vertex once
+//! transforms; every vertex transformed and projected once ([`PreparedMesh::transform`]),
+//! but the sphere's, which stands still: it keeps the vertex data of the first frame (the
+//! same bits a new transform would give), and its shade skips finding its visible vertices
+//! again; with Gouraud shading, the light models at each visible vertex once
 //! ([`PreparedMesh::shade`]); then band by band, scan conversion in integers
 //! ([`PreparedMesh::draw`]) and the band handed to the display.
 //!
