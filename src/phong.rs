@@ -299,7 +299,8 @@ impl<T: Real> CapLight<T> {
     /// within +-46; on the Cortex-M4F (f32), the 2 such cases 515 -> 107, the others at most
     /// 13 dearer (the budget table's median 421 -> 427). The recurrence's products skip
     /// fixed point's saturation tests (every factor at most pi, the same bits): the budget's
-    /// median 5 019 -> 4 397 on the Cortex-M0. Fallback: 0 for a zero or non-finite `r`.
+    /// median 5 019 -> 4 397 on the Cortex-M0 (4 384 now, the square roots' seed table
+    /// indexed without arithmetic). Fallback: 0 for a zero or non-finite `r`.
     ///
     /// <!-- BEGIN acc-phong_cap: target/accuracy/model-phong_cap.md -->
     /// Measured: f64 within 2.4e-13 of its reference (the independent quadrature); against f64,

@@ -346,9 +346,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// instructions in f32 (220 unlit, 495 wholly lit, 744 to 910 clipped; 545 before the
     /// plane test's maximum went off the hot path, each squared length's range was tested
     /// once and `abs` became `VABS.F32`; with the walk alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
-    /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 886
-    /// Cortex-M0 instructions in `Fixed22` (1 018 unlit, 3 886 wholly lit, 4 322 to 6 020
-    /// clipped; with the arc-tangent form for every edge 1 114, 4 646 and 4 562 to 6 257, with
+    /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 832
+    /// Cortex-M0 instructions in `Fixed22` (1 016 unlit, 3 832 wholly lit, 4 326 to 6 012
+    /// clipped; 3 886 with the normalization not inlined, before its directions could be
+    /// shared with the Phong term, `polygon::VertexDirs`; with the arc-tangent form for every edge 1 114, 4 646 and 4 562 to 6 257, with
     /// the walk alone 1 046, 4 929 and 4 540 to 6 230; 5 073 with the edge
     /// term's last two products saturating, 6 325 with the offsets' products saturating too:
     /// `polygon::edge::offset_products`).

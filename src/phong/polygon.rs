@@ -382,8 +382,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 11 857 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 11 856 to 14 592 where the reflection meets the quad; 12 107 before the fan triangle's
+    /// 11 861 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 11 860 to 14 604 where the reflection meets the quad; 11 857 before the clipped edges
+    /// carried their vertices' indices for `polygon::VertexDirs`, which spares a polygon
+    /// light's two terms one normalization of each vertex's direction in
+    /// `Illuminant::diffuse_and_phong`; 12 107 before the fan triangle's
     /// and the horizon crossings' products lost their saturation tests; 13 448 with every edge from
     /// the offsets' products; in a build of the cases alone, at m = 15, 12 826 against 13 303
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
