@@ -3,8 +3,9 @@
 //! Lambert term of a ring wholly above the horizon (the arc ratio's edges), the Phong term's
 //! negligibility test and its walk. Each is `(v_i - p).to_unit()` of the same offset, so the
 //! same bits whichever asks first: [`VertexDirs`] normalizes each at most once per sample.
-//! (A normalization is about 270 Cortex-M0 instructions in `Fixed22`; a lookup here about
-//! 10.)
+//! (A normalization is about 270 Cortex-M0 instructions in `Fixed22`. Measured with the
+//! cache: the QEMU budget's 32 demo shader calls 516 053 -> 508 049 M0 instructions, the
+//! RP2040 demo's frame 1 10 687 086 -> 10 638 442 cycles in rp2040js.)
 
 use crate::{Real, UnitVec3, Vec3};
 
