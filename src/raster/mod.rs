@@ -90,12 +90,14 @@ pub mod mesh;
 pub mod prepared;
 mod scan;
 pub mod shade;
+pub mod split;
 pub mod target;
 
 pub use edge::{Cull, EdgeTriangle, FixedPoint};
 pub use mesh::MeshCounts;
 pub use prepared::{PreparedMesh, PreparedVertex, TriangleRows, VertexColour, VertexScreen};
 pub use shade::{reflect, Lit, Material, Shader, Shading};
+pub use split::{LightSums, SplitLit, SplitShader};
 pub use target::{
     encode_pixel, Band, EncodeTable, Encoding, PixelFormat, Rgb565, Rgb888, ToneMap, DEPTH_FAR,
     ENCODE_ENTRIES, ENCODE_INDEX_BITS, TONE_WHITE_MAX_PERCENT,

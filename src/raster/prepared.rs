@@ -56,17 +56,22 @@
 use super::edge::{edge_small_or_in_range, FixedPoint, SUBPIXEL};
 use super::scan::{colour_bits, DEPTH_FRAC};
 use super::shade::{Shader, Shading};
+use super::split::LightSums;
 use super::{plane_distances, Affine, Camera, DrawOptions, Mesh, RasterError};
-use crate::{Real, Vec3};
+use crate::{Real, UnitVec3, Vec3};
 
 mod draw;
 mod share;
+mod split;
 pub use share::{VertexColour, VertexScreen};
 
 /// Vertex flags: shaded this frame (Gouraud) ...
 const NEEDED: u8 = 1;
-/// ... and transformed to a finite position beyond [`Real::COORDINATE_LIMIT`] (fixed point).
+/// ... and transformed to a finite position beyond [`Real::COORDINATE_LIMIT`] (fixed point) ...
 const BEYOND: u8 = 2;
+/// ... and its entry of the fixed sums holds its [`SplitShader`](super::SplitShader)'s fixed
+/// part for the mesh's `fixed_key` (cleared with the vertex's screen data).
+const KEPT: u8 = 4;
 
 /// One vertex of a [`PreparedMesh`] for the current frame (see the module docs). Storage only:
 /// its fields are the rasterizer's.
@@ -216,6 +221,11 @@ pub struct PreparedMesh<'m, 's, T> {
     rows: (i32, i32),
     /// A transformed vertex lies beyond `T::COORDINATE_LIMIT` (fixed point): `draw` refuses.
     out_of_range: bool,
+    /// One entry per vertex (or none): the fixed parts of
+    /// [`PreparedMesh::shade_split`]'s shader, valid where the vertex's `KEPT` flag is set.
+    fixed_sums: &'s mut [LightSums<T>],
+    /// The shader's fixed version and the options' `two_sided` the kept parts are for.
+    fixed_key: Option<(u32, bool)>,
 }
 
 impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
@@ -248,6 +258,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             visible: None,
             rows: (0, 0),
             out_of_range: false,
+            fixed_sums: &mut [],
+            fixed_key: None,
         })
     }
 
@@ -441,28 +453,47 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         if opts.shading != Shading::Gouraud {
             return 0;
         }
-        let visible = Some((opts.cull, camera.width, camera.height));
-        if self.visible != visible {
-            self.find_visible(camera, opts.cull);
-            self.visible = visible;
-        }
+        self.update_visible(camera, opts.cull);
         let mut calls = 0u32;
         for (i, v) in self.verts.iter_mut().enumerate() {
             if v.flags & NEEDED == 0 || !mine(i) {
                 continue;
             }
-            let view = camera.view_dir(v.p);
-            let n = super::draw::unit_or_view(v.n, view);
-            let n = if opts.two_sided && n.dot(*view) < T::ZERO {
-                -n
-            } else {
-                n
-            };
+            let (n, view) = Self::shading_frame(camera, v, opts.two_sided);
             let col = shader.shade(v.p, n, view).finite_or_zero();
             v.colour = colour_bits(col, opts.exposure);
             calls = calls.wrapping_add(1);
         }
         calls
+    }
+
+    /// Finds the visible vertices for `cull` and the camera's viewport
+    /// ([`PreparedMesh::find_visible`]) unless they are known already.
+    #[inline(always)]
+    fn update_visible(&mut self, camera: &Camera<T>, cull: super::Cull) {
+        let visible = Some((cull, camera.width, camera.height));
+        if self.visible != visible {
+            self.find_visible(camera, cull);
+            self.visible = visible;
+        }
+    }
+
+    /// A vertex's unit normal (toward the viewer when `two_sided`) and unit view direction,
+    /// as the shader gets them.
+    #[inline(always)]
+    fn shading_frame(
+        camera: &Camera<T>,
+        v: &PreparedVertex<T>,
+        two_sided: bool,
+    ) -> (UnitVec3<T>, UnitVec3<T>) {
+        let view = camera.view_dir(v.p);
+        let n = super::draw::unit_or_view(v.n, view);
+        let n = if two_sided && n.dot(*view) < T::ZERO {
+            -n
+        } else {
+            n
+        };
+        (n, view)
     }
 
     /// The visible-vertex pass of [`PreparedMesh::shade_some`]: marks `NEEDED` the vertices

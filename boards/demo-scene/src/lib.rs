@@ -14,7 +14,9 @@
 //! but the sphere's, which stands still: it keeps the vertex data of the first frame (the
 //! same bits a new transform would give), and its shade skips finding its visible vertices
 //! again; with Gouraud shading, the light models at each visible vertex once
-//! ([`PreparedMesh::shade`]); then band by band, scan conversion in integers
+//! ([`PreparedMesh::shade`]), but the panel's at the sphere's vertices, which the sphere keeps
+//! from the first frame (the panel, the sphere and the camera stand still: [`SplitLit`],
+//! [`PreparedMesh::shade_split`]; the same bits); then band by band, scan conversion in integers
 //! ([`PreparedMesh::draw`]) and the band handed to the display.
 //!
 //! Everything fits the fixed-point format: every position (camera, lights, vertices, shading
@@ -47,9 +49,9 @@ pub mod scenes;
 pub mod spec;
 
 use arealight::raster::{
-    mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, Lit, Material,
-    Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading, TriangleRows,
-    Vertex, VertexColour, VertexScreen,
+    mesh, Affine, Band, Camera, Cull, DrawOptions, DrawStats, EncodeTable, Encoding, LightSums,
+    Lit, Material, Mesh, PreparedMesh, PreparedVertex, Projection, RasterError, Rgb565, Shading,
+    SplitLit, TriangleRows, Vertex, VertexColour, VertexScreen,
 };
 use arealight::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3};
 
@@ -100,6 +102,9 @@ const SPHERE_RADIUS: f64 = 0.55;
 const TORUS_AT: [f64; 3] = [0.75, 0.0, 0.0];
 const TORUS_MAJOR_RADIUS: f64 = 0.45;
 const TORUS_MINOR_RADIUS: f64 = 0.17;
+/// The lights of [`Demo::frame`]'s scene that stand still: the first one, the panel (the
+/// sphere keeps their terms at its vertices from frame to frame: [`SplitLit`]).
+const PANEL_LIGHTS: usize = 1;
 /// The lamp (sphere light): radius, radius and height of its orbit about the y axis.
 const LAMP_RADIUS: f64 = 0.15;
 const LAMP_ORBIT: f64 = 1.3;
@@ -107,8 +112,8 @@ const LAMP_HEIGHT: f64 = 0.75;
 
 /// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
 /// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
-/// [`PreparedVertex`] per vertex, one [`TriangleRows`] per triangle) and the encoding table. About
-/// 64 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
+/// [`PreparedVertex`] per vertex, one [`TriangleRows`] per triangle, the sphere's kept
+/// [`LightSums`]) and the encoding table. About 68 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
 /// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
@@ -121,6 +126,9 @@ pub struct MeshBuffers<T> {
     torus_frame: [PreparedVertex<T>; TORUS_VERTICES],
     lamp_frame: [PreparedVertex<T>; LAMP_VERTICES],
     sphere_rows: [TriangleRows; SPHERE_TRIANGLES],
+    /// The panel's terms at the sphere's vertices, kept from frame to frame (both stand
+    /// still: [`SplitLit`]).
+    sphere_sums: [LightSums<T>; SPHERE_VERTICES],
     torus_rows: [TriangleRows; TORUS_TRIANGLES],
     lamp_rows: [TriangleRows; LAMP_TRIANGLES],
     table: EncodeTable,
@@ -146,6 +154,7 @@ impl<T: Real> MeshBuffers<T> {
             torus_frame: [PreparedVertex::EMPTY; TORUS_VERTICES],
             lamp_frame: [PreparedVertex::EMPTY; LAMP_VERTICES],
             sphere_rows: [TriangleRows::EMPTY; SPHERE_TRIANGLES],
+            sphere_sums: [LightSums::ZERO; SPHERE_VERTICES],
             torus_rows: [TriangleRows::EMPTY; TORUS_TRIANGLES],
             lamp_rows: [TriangleRows::EMPTY; LAMP_TRIANGLES],
             table: EncodeTable::zeroed(),
@@ -239,6 +248,7 @@ impl<'a, T: Real> Demo<'a, T> {
             sphere_rows,
             torus_rows,
             lamp_rows,
+            sphere_sums,
             table,
         } = buffers;
         let sphere = mesh::uv_sphere(
@@ -298,7 +308,8 @@ impl<'a, T: Real> Demo<'a, T> {
         let table: &'a EncodeTable = table;
         Ok(Demo {
             camera,
-            sphere: PreparedMesh::with_triangle_rows(sphere, sphere_frame, sphere_rows)?,
+            sphere: PreparedMesh::with_triangle_rows(sphere, sphere_frame, sphere_rows)?
+                .with_fixed_sums(sphere_sums)?,
             torus: PreparedMesh::with_triangle_rows(torus, torus_frame, torus_rows)?,
             lamp: PreparedMesh::with_triangle_rows(lamp, lamp_frame, lamp_rows)?,
             // The panel: 2 x 1.4 units, 1.9 above the floor-less ground, facing down (a
@@ -513,10 +524,12 @@ impl<'a, T: Real> Demo<'a, T> {
     /// The shading of the visible vertices whose index `mine` accepts, every object's.
     fn shade_where(&mut self, frame: &Frame<T>, mine: impl Fn(usize) -> bool + Copy) -> u32 {
         let camera = &self.camera;
-        let red = Lit::new(&frame.lights, &self.red);
+        // The panel (the first light) and the sphere's material never change: version 0.
+        let red = SplitLit::new(&frame.lights, &self.red, PANEL_LIGHTS, 0);
         let teal = Lit::new(&frame.lights, &self.teal);
         let glow = Glow(frame.lamp_colour);
-        self.sphere.shade_some(camera, &red, &self.lit[0], mine)
+        self.sphere
+            .shade_split_some(camera, &red, &self.lit[0], mine)
             + self.torus.shade_some(camera, &teal, &self.lit[1], mine)
             + self.lamp.shade_some(camera, &glow, &self.emissive, mine)
     }

@@ -6,7 +6,7 @@
 //! Both then hold the same frame as one core that did all the work, bit for bit: each
 //! vertex's work depends on that vertex alone.
 
-use super::{screen_rows, Affine, Camera, PreparedMesh, BEYOND};
+use super::{screen_rows, Affine, Camera, PreparedMesh, BEYOND, KEPT};
 use crate::raster::edge::FixedPoint;
 use crate::{Real, Vec3};
 
@@ -104,7 +104,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
                 v.depth = s.depth;
                 v.iw = s.iw;
                 v.outside = s.outside;
-                v.flags = (v.flags & !BEYOND) | if s.beyond { BEYOND } else { 0 };
+                v.flags = (v.flags & !(BEYOND | KEPT)) | if s.beyond { BEYOND } else { 0 };
             }
         }
         let (mut top, mut bottom) = (i32::MAX, i32::MIN);
