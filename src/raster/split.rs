@@ -26,7 +26,7 @@
 //! sphere; `boards/rp2040-st7789`) this takes the polygon light's Lambert and Phong terms out
 //! of the sphere's frames after the first: see the RP2040 README's frame table.
 
-use super::shade::{reflect, Material};
+use super::shade::{reflect, Material, Shader};
 use crate::illuminant::mul_rgb;
 use crate::{Real, Rgb, Scene, UnitVec3, Vec3};
 
@@ -71,7 +71,8 @@ pub trait SplitShader<T: Real> {
 }
 
 /// [`Lit`](super::Lit) of a [`Scene`] whose first `fixed` lights (push order) stand still: a
-/// [`SplitShader`] with the same colours as `Lit::new(scene, material)`, bit for bit.
+/// [`SplitShader`] with the same colours as `Lit::new(scene, material)`, bit for bit, and a
+/// [`Shader`] computing both parts at once (per-pixel shading draws with it as with `Lit`).
 #[derive(Debug)]
 pub struct SplitLit<'a, T, const L: usize, const N: usize> {
     scene: &'a Scene<T, L, N>,
@@ -159,5 +160,14 @@ impl<T: Real, const L: usize, const N: usize> SplitShader<T> for SplitLit<'_, T,
             mul_rgb(m.diffuse, s.diffuse)
         };
         c.finite_or_zero()
+    }
+}
+
+impl<T: Real, const L: usize, const N: usize> Shader<T> for SplitLit<'_, T, L, N> {
+    /// Both parts at once (for per-pixel shading, or a mesh without fixed sums): the colour
+    /// of `Lit::new(scene, material)`, bit for bit. Cost: `Lit`'s.
+    #[inline]
+    fn shade(&self, p: Vec3<T>, n: UnitVec3<T>, v: UnitVec3<T>) -> Rgb<T> {
+        self.finish(&self.fixed_part(p, n, v), p, n, v)
     }
 }

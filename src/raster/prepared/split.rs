@@ -108,7 +108,7 @@ mod tests {
     use crate::raster::split::SplitLit;
     use crate::raster::{
         mesh, Affine, Camera, Cull, DrawOptions, Lit, Material, Mesh, PreparedVertex, Projection,
-        Shading, Vertex,
+        Shader, Shading, Vertex,
     };
     use crate::{Ambient, PolygonLight, Real, Rgb, Scene, SceneLight, SphereLight, UnitVec3, Vec3};
     use core::cell::Cell;
@@ -241,6 +241,11 @@ mod tests {
                     assert_eq!(a.colour, b.colour, "frame {frame}");
                     assert_ne!(a.colour, [0; 3], "frame {frame}");
                     compared += 1;
+                    // Both parts at once (`Shader`, for per-pixel shading): `Lit`'s colour.
+                    let (n, view) = PreparedMesh::shading_frame(&camera, b, two_sided);
+                    let plain = SplitLit::new(&lights, material, 1, version);
+                    let want = lit.shade(b.p, n, view);
+                    assert_eq!(plain.shade(b.p, n, view), want, "frame {frame}");
                 }
             }
             assert_eq!(compared, calls, "frame {frame}");
