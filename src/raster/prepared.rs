@@ -78,21 +78,21 @@ const KEPT: u8 = 4;
 #[derive(Clone, Copy, Debug)]
 pub struct PreparedVertex<T> {
     /// World position.
-    p: Vec3<T>,
+    pub(super) p: Vec3<T>,
     /// Unit world normal (zero if it had no direction).
-    n: Vec3<T>,
+    pub(super) n: Vec3<T>,
     /// `1 / w`.
-    iw: T,
+    pub(super) iw: T,
     /// Snapped screen position (valid when `outside == 0`).
-    fp: FixedPoint,
+    pub(super) fp: FixedPoint,
     /// The depth value `q` with [`DEPTH_FRAC`] fraction bits (valid when `outside == 0`).
-    depth: i32,
+    pub(super) depth: i32,
     /// The shaded colour times the exposure, [`COLOUR_FRAC`] fraction bits (Gouraud).
-    colour: [i32; 3],
+    pub(super) colour: [i32; 3],
     /// Bit `k` set: outside clip plane `k` (near, far, guard band x+, x-, y+, y-); all set for
     /// a non-finite position.
-    outside: u8,
-    flags: u8,
+    pub(super) outside: u8,
+    pub(super) flags: u8,
 }
 
 impl<T: Real> PreparedVertex<T> {

@@ -4,6 +4,7 @@
 //! docs for what is computed and what it costs).
 
 use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
+use super::prepared::PreparedVertex;
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
 use super::{Camera, DrawOptions, DrawStats};
@@ -27,28 +28,6 @@ pub(super) fn colour_bits<T: Real>(c: Rgb<T>, exposure: T) -> [i32; 3] {
     // where the colour or the exposure lies within (-1, 1].)
     T::mul_each([c.r, c.g, c.b], [exposure; 3])
         .map(|x| x.to_fixed_i32(COLOUR_FRAC).clamp(0, COLOUR_MAX))
-}
-
-/// What a triangle's scan conversion needs of a vertex.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct ScreenVertex<T> {
-    pub(super) fp: FixedPoint,
-    pub(super) depth: i32,
-    pub(super) colour: [i32; 3],
-    pub(super) p: Vec3<T>,
-    pub(super) n: Vec3<T>,
-    pub(super) iw: T,
-}
-
-impl<T: Real> ScreenVertex<T> {
-    pub(super) const EMPTY: Self = ScreenVertex {
-        fp: FixedPoint::new(0, 0),
-        depth: 0,
-        colour: [0; 3],
-        p: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
-        n: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
-        iw: T::ZERO,
-    };
 }
 
 /// The draw call's fixed inputs.
@@ -264,7 +243,7 @@ fn recip62(d: u32) -> u32 {
 pub(super) fn raster<T, P, S>(
     ctx: &Context<'_, T, S, P>,
     band: &mut Band<'_, P>,
-    v: &[ScreenVertex<T>; 3],
+    v: [&PreparedVertex<T>; 3],
     stats: &mut DrawStats,
 ) where
     T: Real,
@@ -275,11 +254,7 @@ pub(super) fn raster<T, P, S>(
     let Some(tri) = EdgeTriangle::new([v[0].fp, v[1].fp, v[2].fp], opts.cull) else {
         return;
     };
-    let v = if tri.swapped() {
-        [&v[0], &v[2], &v[1]]
-    } else {
-        [&v[0], &v[1], &v[2]]
-    };
+    let v = if tri.swapped() { [v[0], v[2], v[1]] } else { v };
     stats.rasterized = stats.rasterized.wrapping_add(1);
     let fp = tri.vertices();
     // The anchor: the first pixel centre at or right of / below the leftmost / topmost vertex

@@ -3,7 +3,7 @@
 
 use super::{corners, faces, project, PreparedMesh, PreparedVertex};
 use crate::raster::edge::SUBPIXEL;
-use crate::raster::scan::{colour_bits, raster, Context, ScreenVertex, COLOUR_FRAC};
+use crate::raster::scan::{colour_bits, raster, Context, COLOUR_FRAC};
 use crate::raster::shade::Shader;
 use crate::raster::target::{Band, EncodeTable, PixelFormat};
 use crate::raster::{
@@ -108,8 +108,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
                     return;
                 }
             }
-            let fv = [a, b, c].map(ScreenVertex::from_prepared);
-            raster(ctx, band, &fv, stats);
+            raster(ctx, band, [a, b, c], stats);
         } else {
             self.draw_clipped(ctx, band, [a, b, c], stats);
         }
@@ -148,38 +147,24 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
             camera.far * camera.near / range,
             T::ONE / range,
         );
-        let mut sv = [ScreenVertex::<T>::EMPTY; MAX_CLIPPED];
+        let mut sv = [PreparedVertex::<T>::EMPTY; MAX_CLIPPED];
         for (s, cv) in sv.iter_mut().zip(&poly[..count]) {
             if !(cv.c[3] > T::ZERO) {
                 return;
             }
             let (fp, depth, iw) = project(camera, &cv.c, a, b, inv_range);
-            *s = ScreenVertex {
+            *s = PreparedVertex {
                 fp,
                 depth,
                 colour: colour_bits(cv.col, T::ONE),
                 p: cv.p,
                 n: cv.n,
                 iw,
+                ..PreparedVertex::EMPTY
             };
         }
         for i in 1..count.saturating_sub(1) {
-            raster(ctx, band, &[&sv[0], &sv[i], &sv[i + 1]].map(|s| *s), stats);
-        }
-    }
-}
-
-// (Here rather than in `scan`: it reads `PreparedVertex`'s fields.)
-impl<T: Real> ScreenVertex<T> {
-    #[inline]
-    fn from_prepared(v: &PreparedVertex<T>) -> Self {
-        ScreenVertex {
-            fp: v.fp,
-            depth: v.depth,
-            colour: v.colour,
-            p: v.p,
-            n: v.n,
-            iw: v.iw,
+            raster(ctx, band, [&sv[0], &sv[i], &sv[i + 1]], stats);
         }
     }
 }
