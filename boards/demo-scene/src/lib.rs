@@ -763,6 +763,30 @@ pub(crate) trait Stages {
     fn height(&self) -> u16;
     /// The clear colour.
     fn background(&self) -> Rgb565;
+    /// Whether no object reaches rows `y0..y0 + rows` this frame (after the transform); `false`
+    /// when not known.
+    fn band_is_empty(&self, _y0: u16, _rows: u16) -> bool {
+        false
+    }
+}
+
+/// What [`Demo::render_frame_carrying`] hands its caller.
+#[derive(Debug)]
+pub enum Output<'a, 'b> {
+    /// A finished band, to send.
+    Band(&'a Band<'b, Rgb565>),
+    /// The frame's last band, `rows` rows from `y0`, which no object reaches: not drawn; the
+    /// caller sends it as [`BACKGROUND`] at the next [`Output::Carried`] (or now), instead of
+    /// waiting for its turn at the display.
+    Keep {
+        /// Its first row.
+        y0: u16,
+        /// Its rows.
+        rows: u16,
+    },
+    /// The frame's transform is done (the last frame's bands long handed to the display): a
+    /// band [`Output::Keep`] left can be sent now, while this frame is shaded.
+    Carried,
 }
 
 /// Renders frame `n` of `scene` through `band`, calling `flush` with each finished band, top to
@@ -774,6 +798,22 @@ pub(crate) fn render_stages<S: Stages, E>(
     band: &mut Band<'_, Rgb565>,
     clock: &mut impl FnMut() -> u32,
     mut flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
+) -> Result<FrameReport, FrameError<E>> {
+    render_stages_carrying(scene, n, band, clock, false, |out| match out {
+        Output::Band(b) => flush(b),
+        Output::Keep { .. } | Output::Carried => Ok(()),
+    })
+}
+
+/// [`render_stages`] handing the caller [`Output`]s: with `carry`, the last band is kept
+/// when no object reaches it, and [`Output::Carried`] follows every transform.
+pub(crate) fn render_stages_carrying<S: Stages, E>(
+    scene: &mut S,
+    n: u32,
+    band: &mut Band<'_, Rgb565>,
+    clock: &mut impl FnMut() -> u32,
+    carry: bool,
+    mut flush: impl FnMut(Output<'_, '_>) -> Result<(), E>,
 ) -> Result<FrameReport, FrameError<E>> {
     let mut report = FrameReport::default();
     let mut last = clock();
@@ -787,6 +827,10 @@ pub(crate) fn render_stages<S: Stages, E>(
     lap(Stage::Setup, &mut report.ticks);
     scene.transform(&frame);
     lap(Stage::Transform, &mut report.ticks);
+    if carry {
+        flush(Output::Carried).map_err(FrameError::Flush)?;
+        lap(Stage::Flush, &mut report.ticks);
+    }
     let mut stats = DrawStats {
         shaded: scene.shade(&frame),
         ..DrawStats::default()
@@ -796,11 +840,16 @@ pub(crate) fn render_stages<S: Stages, E>(
     let (height, background) = (scene.height(), scene.background());
     let mut y0: u16 = 0;
     while y0 < height {
-        band.move_to(y0);
-        band.clear(background);
-        scene.draw_band(&frame, band, &mut stats)?;
-        lap(Stage::Raster, &mut report.ticks);
-        flush(band).map_err(FrameError::Flush)?;
+        let out = if carry && y0.saturating_add(rows) >= height && scene.band_is_empty(y0, rows) {
+            Output::Keep { y0, rows }
+        } else {
+            band.move_to(y0);
+            band.clear(background);
+            scene.draw_band(&frame, band, &mut stats)?;
+            lap(Stage::Raster, &mut report.ticks);
+            Output::Band(band)
+        };
+        flush(out).map_err(FrameError::Flush)?;
         lap(Stage::Flush, &mut report.ticks);
         y0 = y0.saturating_add(rows);
     }
@@ -833,6 +882,9 @@ impl<T: Real> Stages for Demo<'_, T> {
     fn background(&self) -> Rgb565 {
         BACKGROUND
     }
+    fn band_is_empty(&self, y0: u16, rows: u16) -> bool {
+        Demo::band_is_empty(self, y0, rows)
+    }
 }
 
 impl<'a, T: Real> Demo<'a, T> {
@@ -851,5 +903,26 @@ impl<'a, T: Real> Demo<'a, T> {
         flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
     ) -> Result<FrameReport, FrameError<E>> {
         render_stages(self, n, band, clock, flush)
+    }
+
+    /// [`Demo::render_frame`] for a display that keeps what it was sent and a sender that
+    /// need not wait: a last band that no object reaches is not drawn but handed to `flush` as
+    /// [`Output::Keep`], and after each frame's transform `flush` gets [`Output::Carried`], when
+    /// the caller sends such a band as [`BACKGROUND`] (its turn at the display has long come:
+    /// the frame before it ended during the transform). So the frame's end does not wait for
+    /// the transfer of the band before the last, and the last band's transfer overlaps the next
+    /// frame's shading; the display still receives each frame whole before the next one. The
+    /// one-core RP2040 firmware's loop (`boards/rp2040-st7789/src/bin/lit_scene.rs`).
+    ///
+    /// # Errors
+    /// The first error of the rasterizer or of `flush`.
+    pub fn render_frame_carrying<E>(
+        &mut self,
+        n: u32,
+        band: &mut Band<'_, Rgb565>,
+        clock: &mut impl FnMut() -> u32,
+        flush: impl FnMut(Output<'_, '_>) -> Result<(), E>,
+    ) -> Result<FrameReport, FrameError<E>> {
+        render_stages_carrying(self, n, band, clock, true, flush)
     }
 }

@@ -242,3 +242,74 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
         }
     }
 }
+
+#[test]
+fn a_carried_last_band_gives_the_frames_of_render_frame() {
+    // `render_frame_carrying` keeps an empty last band and hands it back after the next
+    // frame's transform: a display that applies its outputs in order shows, once the kept
+    // band is sent, exactly the frame `render_frame` draws; the next frame's bands come only
+    // after that.
+    for rows in [40u16, 16] {
+        let rows_px = WIDTH as usize * rows as usize;
+        let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
+        let mut demo = Demo::new(&mut buffers, Shading::Gouraud).unwrap();
+        let (mut pixels, mut depth) = (vec![Rgb565(0); rows_px], vec![0u16; rows_px]);
+        let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0).unwrap();
+        let mut display = vec![Rgb565(0); FRAME_PIXELS];
+        let mut kept: Option<(u16, u16)> = None;
+        let mut keeps = 0;
+        let mut shown: Vec<Vec<Rgb565>> = Vec::new();
+        let frames = [0u32, 1, 2, 60, 61, 119];
+        for &n in &frames {
+            demo.render_frame_carrying(n, &mut band, &mut || 0, |out| {
+                match out {
+                    demo_scene::Output::Band(b) => {
+                        assert!(kept.is_none(), "frame {n}: a band before the kept one");
+                        let at = b.y0() as usize * WIDTH as usize;
+                        let len = b.pixels().len().min(FRAME_PIXELS - at);
+                        display[at..at + len].copy_from_slice(&b.pixels()[..len]);
+                    }
+                    demo_scene::Output::Keep { y0, rows } => {
+                        assert!(kept.is_none());
+                        assert_eq!(y0 + rows, HEIGHT, "frame {n}: only the last band");
+                        kept = Some((y0, rows));
+                        keeps += 1;
+                        return Ok::<(), ()>(());
+                    }
+                    demo_scene::Output::Carried => {
+                        if let Some((y0, _)) = kept.take() {
+                            let at = y0 as usize * WIDTH as usize;
+                            display[at..].fill(BACKGROUND);
+                        } else {
+                            return Ok(());
+                        }
+                    }
+                }
+                // The frame is whole once its last pixel is written (the emulator's rule).
+                if kept.is_none() && display[FRAME_PIXELS - 1] != Rgb565(0) {
+                    let last_written = match &out {
+                        demo_scene::Output::Band(b) => b.y0() + b.rows() >= HEIGHT,
+                        _ => true,
+                    };
+                    if last_written {
+                        shown.push(display.clone());
+                    }
+                }
+                Ok(())
+            })
+            .unwrap();
+        }
+        // The last frame's kept band, as the next frame would send it.
+        if let Some((y0, _)) = kept.take() {
+            display[y0 as usize * WIDTH as usize..].fill(BACKGROUND);
+            shown.push(display.clone());
+        }
+        assert_eq!(shown.len(), frames.len(), "{rows} rows");
+        // Not vacuous: the objects never reach the bottom rows, so every frame keeps its band.
+        assert_eq!(keeps, frames.len(), "{rows} rows");
+        for (k, &n) in frames.iter().enumerate() {
+            let (want, _, _) = render_rows::<Fixed22>(Shading::Gouraud, n, rows);
+            assert!(shown[k] == want, "{rows} rows, frame {n}");
+        }
+    }
+}

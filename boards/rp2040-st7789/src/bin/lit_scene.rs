@@ -19,7 +19,7 @@ use panic_probe as _;
 use arealight::raster::{Band, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
-use demo_scene::{Demo, MeshBuffers, Stage, HEIGHT, PERIOD, WIDTH};
+use demo_scene::{Demo, MeshBuffers, Output, Stage, BACKGROUND, HEIGHT, PERIOD, WIDTH};
 use embedded_hal::digital::OutputPin;
 use embedded_hal_bus::spi::ExclusiveDevice;
 use hal::clocks::Clock;
@@ -176,10 +176,24 @@ fn run() -> ! {
     //     (the lights, every vertex transformed and shaded once, then the bands, each sent
     //     as soon as it is drawn: `BandSender::send`, by DMA, while the next is drawn) and
     //     times its stages with the 1 MHz timer.
+    //     An empty last band is not drawn: it is sent as the background early in the next
+    //     frame, once its transform is done (`render_frame_carrying`), so the frame does not
+    //     wait for the band before it to be sent.
     let mut n: u32 = 0;
+    let mut kept: Option<(u16, u16)> = None;
     loop {
         let mut clock = || timer.get_counter_low();
-        let result = demo.render_frame(n, &mut band, &mut clock, |band| display.send(band));
+        let result = demo.render_frame_carrying(n, &mut band, &mut clock, |out| match out {
+            Output::Band(band) => display.send(band),
+            Output::Keep { y0, rows } => {
+                kept = Some((y0, rows));
+                Ok(())
+            }
+            Output::Carried => match kept.take() {
+                Some((y0, rows)) => display.send_uniform(y0, rows, BACKGROUND),
+                None => Ok(()),
+            },
+        });
         // The last band's transfer ends the frame (timed with the next frame's first band).
         match result {
             Ok(report) => {
