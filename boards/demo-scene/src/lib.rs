@@ -214,6 +214,21 @@ pub struct Frame<T> {
     transforms: [Affine<T>; 3],
 }
 
+/// Whether vertex `i` is core `core`'s of `cores` (`i mod cores == core`): with two cores the
+/// low bit, no division (an ARMv6-M core has no divide instruction: each `%` by a number
+/// known only at run time is a library call, and the shares ask once per vertex several
+/// times a frame).
+#[inline]
+fn share(core: usize, cores: usize) -> impl Fn(usize) -> bool + Copy {
+    move |i: usize| {
+        if cores == 2 {
+            i & 1 == core
+        } else {
+            i % cores == core
+        }
+    }
+}
+
 /// The lamp's shader: its colour, whatever the normal.
 struct Glow<T>(Rgb<T>);
 
@@ -434,7 +449,7 @@ impl<'a, T: Real> Demo<'a, T> {
     pub fn transform_share(&mut self, frame: &Frame<T>, core: usize, cores: usize) {
         let [s, t, l] = &frame.transforms;
         let cores = cores.max(1);
-        let mine = |i: usize| i % cores == core;
+        let mine = share(core, cores);
         // (Every core decides the same from the same frames: each skips the sphere, and the
         // exchange leaves it out, in the same frames.)
         if self.sphere_moves(s) {
@@ -456,10 +471,10 @@ impl<'a, T: Real> Demo<'a, T> {
     /// [`Demo::transform_share`] with the same `core` and `cores`; the other entries are left
     /// for the other core to write).
     pub fn export_screen(&self, exchange: &mut ScreenExchange<T>, core: usize, cores: usize) {
-        let cores = cores.max(1);
+        let ours = share(core, cores.max(1));
         let copy = |dst: &mut [VertexScreen<T>], src: &PreparedMesh<'_, '_, T>| {
             for (i, (d, v)) in dst.iter_mut().zip(src.screen()).enumerate() {
-                if i % cores == core {
+                if ours(i) {
                     *d = v;
                 }
             }
@@ -475,7 +490,7 @@ impl<'a, T: Real> Demo<'a, T> {
     /// transformed (what it exported this frame).
     pub fn import_screen(&mut self, exchange: &ScreenExchange<T>, core: usize, cores: usize) {
         let cores = cores.max(1);
-        let theirs = |i: usize| i % cores == core;
+        let theirs = share(core, cores);
         let camera = &self.camera;
         if self.sphere_moved {
             self.sphere
@@ -500,7 +515,7 @@ impl<'a, T: Real> Demo<'a, T> {
     /// [`Demo::import_colours`]): every visible vertex is shaded once per frame.
     pub fn shade_share(&mut self, frame: &Frame<T>, core: usize, cores: usize) -> u32 {
         let cores = cores.max(1);
-        self.shade_where(frame, |i| i % cores == core)
+        self.shade_where(frame, share(core, cores))
     }
 
     /// [`Demo::shade_share`], calling `poll` before each of this core's shader calls (one
@@ -514,11 +529,11 @@ impl<'a, T: Real> Demo<'a, T> {
         cores: usize,
         poll: impl FnMut(),
     ) -> u32 {
-        let cores = cores.max(1);
+        let ours = share(core, cores.max(1));
         // (`shade_some` takes a `Fn` filter: the poll behind a `RefCell`.)
         let poll = core::cell::RefCell::new(poll);
         self.shade_where(frame, |i| {
-            let mine = i % cores == core;
+            let mine = ours(i);
             if mine {
                 if let Ok(mut poll) = poll.try_borrow_mut() {
                     (*poll)();
@@ -569,7 +584,7 @@ impl<'a, T: Real> Demo<'a, T> {
     /// (what it exported this frame).
     pub fn import_colours(&mut self, exchange: &ColourExchange, core: usize, cores: usize) {
         let cores = cores.max(1);
-        let theirs = |i: usize| i % cores == core;
+        let theirs = share(core, cores);
         self.sphere
             .set_colours(exchange.sphere.iter().copied(), theirs);
         self.torus
