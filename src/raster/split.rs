@@ -57,7 +57,7 @@ impl<T: Real> Default for LightSums<T> {
 
 /// A shader whose colour is a part that stays the same from frame to frame, kept per vertex,
 /// and a part that finishes it (see the module docs). `finish(fixed_part(p, n, v), p, n, v)`
-/// is the colour, for `p`, `n`, `v` as [`Shader::shade`](super::Shader::shade) takes them.
+/// is the colour, for `p`, `n`, `v` as [`Shader::shade`] takes them.
 pub trait SplitShader<T: Real> {
     /// What the fixed part depends on besides the vertex and the camera (the fixed lights and
     /// the material), as a number the caller changes whenever that changes: a kept part with
