@@ -45,8 +45,9 @@ impl<T: Real> Illuminant<T> for SphereLight<T> {
     }
     /// The cap the sphere subtends at `p`, computed once for both terms (the same bits
     /// as the two calls).
+    /// (Always inlined: see `scene::Entry::diffuse_and_phong`.)
     #[cfg(feature = "phong")]
-    #[inline]
+    #[inline(always)]
     fn diffuse_and_phong(
         &self,
         lobe: &PhongLobe<T>,

@@ -26,8 +26,9 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
     }
     /// Both terms with `p`'s checks and its test against the polygon's plane done once
     /// (the same bits as the two calls).
+    /// (Always inlined: see `scene::Entry::diffuse_and_phong`.)
     #[cfg(feature = "phong")]
-    #[inline]
+    #[inline(always)]
     fn diffuse_and_phong(
         &self,
         lobe: &PhongLobe<T>,
