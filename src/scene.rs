@@ -334,7 +334,7 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for Scene<T, L, N> {
     ) -> (Rgb<T>, Rgb<T>) {
         let zero = Rgb::splat(T::ZERO);
         self.entries.iter().fold((zero, zero), |(d, s), e| {
-            let (de, se) = e.diffuse_and_phong_inlined(lobe, p, n, r);
+            let (de, se) = e.diffuse_and_phong_here(lobe, p, n, r);
             (d.add(de), s.add(se))
         })
     }
@@ -375,7 +375,7 @@ impl<T: Real, const L: usize, const N: usize> Illuminant<T> for PreparedScene<'_
         let zero = Rgb::splat(T::ZERO);
         self.active.iter().fold((zero, zero), |(d, s), &i| {
             e.get(usize::from(i)).map_or((d, s), |l| {
-                let (de, se) = l.diffuse_and_phong_inlined(lobe, p, n, r);
+                let (de, se) = l.diffuse_and_phong_here(lobe, p, n, r);
                 (d.add(de), s.add(se))
             })
         })
@@ -468,15 +468,35 @@ impl<T: Real, const N: usize> Entry<T, N> {
 }
 
 impl<T: Real, const N: usize> Entry<T, N> {
+    /// [`Entry::diffuse_and_phong_inlined`] where the scene's own sum
+    /// ([`Illuminant::diffuse_and_phong`], `Lit`'s) calls it: inlined with an FPU, this
+    /// function of its own on the Cortex-M0 (where every caller shares it, code size and all;
+    /// see [`Entry::diffuse_and_phong`]).
+    #[inline(always)]
+    fn diffuse_and_phong_here(
+        &self,
+        lobe: &PhongLobe<T>,
+        p: Vec3<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (Rgb<T>, Rgb<T>) {
+        if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+            self.diffuse_and_phong(lobe, p, n, r)
+        } else {
+            self.diffuse_and_phong_inlined(lobe, p, n, r)
+        }
+    }
+
     /// [`Entry::diffuse_and_phong_inlined`] as a function of its own: the split shaders' sums
-    /// ([`Scene::diffuse_and_phong_over`]) call this one, so that the scene's own sum
-    /// ([`Illuminant::diffuse_and_phong`], `Lit`'s) keeps the inlined body, and the lights'
-    /// own `diffuse_and_phong` are always inlined into both. Measured with the split shaders
-    /// in (rp2040js two cores, frames 1 to 15; `boards/qemu-frame` per pixel, frame 0): this
-    /// function called from everywhere, 4 982 153 cycles and 33 764 632 instructions; inlined
-    /// everywhere, 5 009 582 and 33 412 883; as here, 4 985 375 and 33 137 477 (33 225 763
-    /// before the split shaders).
-    #[cfg(feature = "raster")]
+    /// ([`Scene::diffuse_and_phong_over`]) call this one, and on the Cortex-M0 the scene's own
+    /// sum too; with an FPU the scene's own sum keeps the inlined body, the lights' own
+    /// `diffuse_and_phong` inlined into both. Measured with the split shaders in (rp2040js two
+    /// cores, frames 1 to 15, and the firmware's `.text`; `boards/qemu-frame` per pixel, frame
+    /// 0): this function called from everywhere, 4 982 153 cycles, 206 672 bytes and 33 764 632
+    /// instructions; inlined everywhere, 5 009 582 cycles and 33 412 883 instructions; the
+    /// scene's own sum inlined and the lights' always, 4 985 375 cycles, 224 072 bytes and
+    /// 33 137 477 instructions (33 225 763 before the split shaders): hence the one on the
+    /// Cortex-M0, the other with an FPU.
     #[inline(never)]
     fn diffuse_and_phong(
         &self,

@@ -26,9 +26,14 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
     }
     /// Both terms with `p`'s checks and its test against the polygon's plane done once
     /// (the same bits as the two calls).
-    /// (Always inlined: see `scene::Entry::diffuse_and_phong`.)
+    /// (Always inlined with an FPU, only hinted on the Cortex-M0: see
+    /// `scene::Entry::diffuse_and_phong`.)
     #[cfg(feature = "phong")]
-    #[inline(always)]
+    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline)]
+    #[cfg_attr(
+        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        inline(always)
+    )]
     fn diffuse_and_phong(
         &self,
         lobe: &PhongLobe<T>,
