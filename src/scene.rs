@@ -470,8 +470,8 @@ impl<T: Real, const N: usize> Entry<T, N> {
 impl<T: Real, const N: usize> Entry<T, N> {
     /// [`Entry::diffuse_and_phong_inlined`] where the scene's own sum
     /// ([`Illuminant::diffuse_and_phong`], `Lit`'s) calls it: inlined with an FPU, this
-    /// function of its own on the Cortex-M0 (where every caller shares it, code size and all;
-    /// see [`Entry::diffuse_and_phong`]).
+    /// function of its own on soft-float targets (Cortex-M0, RV32IMC: every caller shares it,
+    /// code size and all; see [`Entry::diffuse_and_phong`]).
     #[inline(always)]
     fn diffuse_and_phong_here(
         &self,
@@ -480,7 +480,14 @@ impl<T: Real, const N: usize> Entry<T, N> {
         n: UnitVec3<T>,
         r: UnitVec3<T>,
     ) -> (Rgb<T>, Rgb<T>) {
-        if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        // (`real::SOFT_FLOAT`'s targets; that constant is there with the polygon feature only.)
+        if cfg!(any(
+            all(target_arch = "arm", not(target_abi = "eabihf")),
+            all(
+                any(target_arch = "riscv32", target_arch = "riscv64"),
+                not(target_feature = "f")
+            )
+        )) {
             self.diffuse_and_phong(lobe, p, n, r)
         } else {
             self.diffuse_and_phong_inlined(lobe, p, n, r)
@@ -488,15 +495,16 @@ impl<T: Real, const N: usize> Entry<T, N> {
     }
 
     /// [`Entry::diffuse_and_phong_inlined`] as a function of its own: the split shaders' sums
-    /// ([`Scene::diffuse_and_phong_over`]) call this one, and on the Cortex-M0 the scene's own
-    /// sum too; with an FPU the scene's own sum keeps the inlined body, the lights' own
+    /// ([`Scene::diffuse_and_phong_over`]) call this one, and on soft-float targets the scene's
+    /// own sum too; with an FPU the scene's own sum keeps the inlined body, the lights' own
     /// `diffuse_and_phong` inlined into both. Measured with the split shaders in (rp2040js two
     /// cores, frames 1 to 15, and the firmware's `.text`; `boards/qemu-frame` per pixel, frame
     /// 0): this function called from everywhere, 4 982 153 cycles, 206 672 bytes and 33 764 632
     /// instructions; inlined everywhere, 5 009 582 cycles and 33 412 883 instructions; the
     /// scene's own sum inlined and the lights' always, 4 985 375 cycles, 224 072 bytes and
-    /// 33 137 477 instructions (33 225 763 before the split shaders): hence the one on the
-    /// Cortex-M0, the other with an FPU.
+    /// 33 137 477 instructions (33 225 763 before the split shaders): hence the one on
+    /// soft-float targets (the RV32IMC scene cost too: 999 106 instructions the other way,
+    /// against 995 536), the other with an FPU.
     #[inline(never)]
     fn diffuse_and_phong(
         &self,

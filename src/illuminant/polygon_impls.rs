@@ -26,12 +26,27 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
     }
     /// Both terms with `p`'s checks and its test against the polygon's plane done once
     /// (the same bits as the two calls).
-    /// (Always inlined with an FPU, only hinted on the Cortex-M0: see
-    /// `scene::Entry::diffuse_and_phong`.)
+    /// (Always inlined with an FPU, only hinted on soft-float targets, `real::SOFT_FLOAT`'s:
+    /// see `scene::Entry::diffuse_and_phong`.)
     #[cfg(feature = "phong")]
-    #[cfg_attr(all(target_arch = "arm", not(target_has_atomic = "32")), inline)]
     #[cfg_attr(
-        not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+        any(
+            all(target_arch = "arm", not(target_abi = "eabihf")),
+            all(
+                any(target_arch = "riscv32", target_arch = "riscv64"),
+                not(target_feature = "f")
+            )
+        ),
+        inline
+    )]
+    #[cfg_attr(
+        not(any(
+            all(target_arch = "arm", not(target_abi = "eabihf")),
+            all(
+                any(target_arch = "riscv32", target_arch = "riscv64"),
+                not(target_feature = "f")
+            )
+        )),
         inline(always)
     )]
     fn diffuse_and_phong(
