@@ -65,6 +65,37 @@
 // every validation and fallback here needs.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+/// A function always inlined on targets with an FPU and only hinted (`#[inline]`) on
+/// soft-float targets (`real::SOFT_FLOAT`'s: ARM without `eabihf`, RISC-V without F), where
+/// its callers share one copy (see `scene::Entry::diffuse_and_phong` for the measurements).
+#[cfg(any(feature = "cap", feature = "polygon"))]
+macro_rules! inline_always_with_fpu {
+    ($(#[$attr:meta])* $vis:vis fn $($rest:tt)*) => {
+        $(#[$attr])*
+        #[cfg_attr(
+            any(
+                all(target_arch = "arm", not(target_abi = "eabihf")),
+                all(
+                    any(target_arch = "riscv32", target_arch = "riscv64"),
+                    not(target_feature = "f")
+                )
+            ),
+            inline
+        )]
+        #[cfg_attr(
+            not(any(
+                all(target_arch = "arm", not(target_abi = "eabihf")),
+                all(
+                    any(target_arch = "riscv32", target_arch = "riscv64"),
+                    not(target_feature = "f")
+                )
+            )),
+            inline(always)
+        )]
+        $vis fn $($rest)*
+    };
+}
+
 #[cfg(feature = "cap")]
 pub mod cap;
 pub mod error;

@@ -19,7 +19,6 @@ use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
 mod arc_ratio;
-#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
 pub(crate) use arc_ratio::SOFT_FLOAT;
 mod f32_math;
 pub mod fast32;

@@ -480,14 +480,7 @@ impl<T: Real, const N: usize> Entry<T, N> {
         n: UnitVec3<T>,
         r: UnitVec3<T>,
     ) -> (Rgb<T>, Rgb<T>) {
-        // (`real::SOFT_FLOAT`'s targets; that constant is there with the polygon feature only.)
-        if cfg!(any(
-            all(target_arch = "arm", not(target_abi = "eabihf")),
-            all(
-                any(target_arch = "riscv32", target_arch = "riscv64"),
-                not(target_feature = "f")
-            )
-        )) {
+        if crate::real::SOFT_FLOAT {
             self.diffuse_and_phong(lobe, p, n, r)
         } else {
             self.diffuse_and_phong_inlined(lobe, p, n, r)

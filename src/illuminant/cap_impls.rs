@@ -43,41 +43,23 @@ impl<T: Real> Illuminant<T> for SphereLight<T> {
             black()
         }
     }
-    /// The cap the sphere subtends at `p`, computed once for both terms (the same bits
-    /// as the two calls).
-    /// (Always inlined with an FPU, only hinted on soft-float targets, `real::SOFT_FLOAT`'s:
-    /// see `scene::Entry::diffuse_and_phong`.)
-    #[cfg(feature = "phong")]
-    #[cfg_attr(
-        any(
-            all(target_arch = "arm", not(target_abi = "eabihf")),
-            all(
-                any(target_arch = "riscv32", target_arch = "riscv64"),
-                not(target_feature = "f")
-            )
-        ),
-        inline
-    )]
-    #[cfg_attr(
-        not(any(
-            all(target_arch = "arm", not(target_abi = "eabihf")),
-            all(
-                any(target_arch = "riscv32", target_arch = "riscv64"),
-                not(target_feature = "f")
-            )
-        )),
-        inline(always)
-    )]
-    fn diffuse_and_phong(
-        &self,
-        lobe: &PhongLobe<T>,
-        p: Vec3<T>,
-        n: UnitVec3<T>,
-        r: UnitVec3<T>,
-    ) -> (Rgb<T>, Rgb<T>) {
-        match self.cap_at(p) {
-            Ok(cap) => (grey(cap.lambert(n)), grey(cap.phong(lobe, r))),
-            Err(_) => (black(), black()),
+    inline_always_with_fpu! {
+        /// The cap the sphere subtends at `p`, computed once for both terms (the same bits
+        /// as the two calls).
+        /// (Always inlined with an FPU, only hinted on soft-float targets: see
+        /// `scene::Entry::diffuse_and_phong`.)
+        #[cfg(feature = "phong")]
+        fn diffuse_and_phong(
+            &self,
+            lobe: &PhongLobe<T>,
+            p: Vec3<T>,
+            n: UnitVec3<T>,
+            r: UnitVec3<T>,
+        ) -> (Rgb<T>, Rgb<T>) {
+            match self.cap_at(p) {
+                Ok(cap) => (grey(cap.lambert(n)), grey(cap.phong(lobe, r))),
+                Err(_) => (black(), black()),
+            }
         }
     }
 }

@@ -24,56 +24,38 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
             black()
         }
     }
-    /// Both terms with `p`'s checks and its test against the polygon's plane done once
-    /// (the same bits as the two calls).
-    /// (Always inlined with an FPU, only hinted on soft-float targets, `real::SOFT_FLOAT`'s:
-    /// see `scene::Entry::diffuse_and_phong`.)
-    #[cfg(feature = "phong")]
-    #[cfg_attr(
-        any(
-            all(target_arch = "arm", not(target_abi = "eabihf")),
-            all(
-                any(target_arch = "riscv32", target_arch = "riscv64"),
-                not(target_feature = "f")
-            )
-        ),
-        inline
-    )]
-    #[cfg_attr(
-        not(any(
-            all(target_arch = "arm", not(target_abi = "eabihf")),
-            all(
-                any(target_arch = "riscv32", target_arch = "riscv64"),
-                not(target_feature = "f")
-            )
-        )),
-        inline(always)
-    )]
-    fn diffuse_and_phong(
-        &self,
-        lobe: &PhongLobe<T>,
-        p: Vec3<T>,
-        n: UnitVec3<T>,
-        r: UnitVec3<T>,
-    ) -> (Rgb<T>, Rgb<T>) {
-        if p.check_position("p").is_err() {
-            return (black(), black());
-        }
-        let plane = self.in_plane(p);
-        // Fixed point: the vertices' unit directions from `p`, each normalized once for both
-        // terms. (The floats' Lambert term takes none, so only their Phong walk would ask:
-        // the cache would cost them and save nothing; measured on the Cortex-M4F, a per-pixel
-        // frame 4.8 % longer with it.)
-        if T::RESOLUTION > T::ZERO {
-            let mut dirs = VertexDirs::<T, N>::new();
-            let d = self.lambert_at_with(p, n, plane, &mut dirs);
-            let s = self.phong_at_with(lobe, p, r, plane, &mut dirs);
-            (grey(d.unwrap_or(T::ZERO)), grey(s.unwrap_or(T::ZERO)))
-        } else {
-            (
-                grey(self.lambert_at(p, n, plane).unwrap_or(T::ZERO)),
-                grey(self.phong_at(lobe, p, r, plane).unwrap_or(T::ZERO)),
-            )
+    inline_always_with_fpu! {
+        /// Both terms with `p`'s checks and its test against the polygon's plane done once
+        /// (the same bits as the two calls).
+        /// (Always inlined with an FPU, only hinted on soft-float targets: see
+        /// `scene::Entry::diffuse_and_phong`.)
+        #[cfg(feature = "phong")]
+        fn diffuse_and_phong(
+            &self,
+            lobe: &PhongLobe<T>,
+            p: Vec3<T>,
+            n: UnitVec3<T>,
+            r: UnitVec3<T>,
+        ) -> (Rgb<T>, Rgb<T>) {
+            if p.check_position("p").is_err() {
+                return (black(), black());
+            }
+            let plane = self.in_plane(p);
+            // Fixed point: the vertices' unit directions from `p`, each normalized once for both
+            // terms. (The floats' Lambert term takes none, so only their Phong walk would ask:
+            // the cache would cost them and save nothing; measured on the Cortex-M4F, a per-pixel
+            // frame 4.8 % longer with it.)
+            if T::RESOLUTION > T::ZERO {
+                let mut dirs = VertexDirs::<T, N>::new();
+                let d = self.lambert_at_with(p, n, plane, &mut dirs);
+                let s = self.phong_at_with(lobe, p, r, plane, &mut dirs);
+                (grey(d.unwrap_or(T::ZERO)), grey(s.unwrap_or(T::ZERO)))
+            } else {
+                (
+                    grey(self.lambert_at(p, n, plane).unwrap_or(T::ZERO)),
+                    grey(self.phong_at(lobe, p, r, plane).unwrap_or(T::ZERO)),
+                )
+            }
         }
     }
 }
