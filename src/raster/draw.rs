@@ -180,6 +180,9 @@ pub(super) fn raster_triangle<T, P, S>(
     let Some(tri) = EdgeTriangle::new(fp, opts.cull) else {
         return;
     };
+    if tri.pixel_bounds(camera.width as i32, row0, row1).is_none() {
+        return;
+    }
     stats.rasterized = stats.rasterized.wrapping_add(1);
     let order = if tri.swapped() { [0, 2, 1] } else { [0, 1, 2] };
     let vs = [v[order[0]], v[order[1]], v[order[2]]];

@@ -262,7 +262,9 @@ impl<T: Real> DrawOptions<T> {
 pub struct DrawStats {
     /// Triangles of the mesh.
     pub triangles: u32,
-    /// Triangles (after clipping, fan pieces counted) set up for scan conversion in this band.
+    /// Triangles (after clipping, fan pieces counted) set up for scan conversion in this band:
+    /// those whose pixel box meets the band's rows (a triangle that covers no pixel centre
+    /// there is dropped before its setup).
     pub rasterized: u32,
     /// Shader calls.
     pub shaded: u32,
