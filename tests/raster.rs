@@ -353,6 +353,64 @@ fn bands_equal_full<T: Real, P: PixelFormat + Default + PartialEq + core::fmt::D
     }
 }
 
+/// Bands drawn into two pixel buffers in turn, as a firmware that hands each finished buffer
+/// to a DMA transfer whole while the next band is drawn into the other (`Band::replace_pixels`:
+/// the finished buffer out, the one sent before it back), give the frame drawn through one
+/// buffer, bit for bit; a buffer of another length is handed back untouched and the band keeps
+/// its own.
+#[test]
+fn bands_drawn_through_swapped_buffers_equal_the_full_frame() {
+    let (w, h, rows) = (96u16, 72u16, 16u16);
+    let (full, _) = render_full::<f32, Rgb565>(w, h);
+    let (m, cam) = (meshes::<f32>(), camera::<f32>(w, h));
+    let n = w as usize * rows as usize;
+    // Different garbage in each buffer: a band must not depend on what its buffer held.
+    let (mut a, mut b) = (vec![Rgb565(0x1234); n], vec![Rgb565(0xBEEF); n]);
+    let mut depth = vec![7u16; n];
+    let mut band = Band::new(&mut a, Some(&mut depth), w, 0).unwrap();
+    let mut sent: &mut [Rgb565] = &mut b;
+    let mut frame = Vec::new();
+    let mut y0 = 0;
+    while y0 < h {
+        band.move_to(y0);
+        band.clear(Rgb565::default());
+        draw_scene(&mut band, &m, &cam);
+        let before = band.pixels().to_vec();
+        let drawn = band.replace_pixels(sent).unwrap();
+        assert_eq!(drawn, &before[..]);
+        let keep = (h - y0).min(rows) as usize * w as usize;
+        frame.extend_from_slice(&drawn[..keep]);
+        sent = drawn;
+        y0 += rows;
+    }
+    assert_eq!(frame.len(), full.len());
+    assert_eq!(frame, full);
+    assert!(full.iter().filter(|&&p| p != Rgb565::default()).count() > full.len() / 2);
+
+    let (mut own, mut short) = (vec![Rgb565(3); n], vec![Rgb565(5); n - 1]);
+    let mut band = Band::new(&mut own, None, w, 0).unwrap();
+    let back = band.replace_pixels(&mut short).unwrap_err();
+    assert_eq!(back, &vec![Rgb565(5); n - 1][..]);
+    assert_eq!(band.pixels(), &vec![Rgb565(3); n][..]);
+}
+
+/// With the `bytemuck` feature the pixel formats are plain words: a band's RGB565 pixels are
+/// the `u16`s a DMA channel sends, the same bits.
+#[cfg(feature = "bytemuck")]
+#[test]
+fn pixels_cast_to_words_and_back() {
+    let mut px = [Rgb565::new(31, 0, 0), Rgb565::new(0, 63, 0), Rgb565(0xABCD)];
+    let words: &mut [u16] = bytemuck::cast_slice_mut(&mut px);
+    assert_eq!(words, &[0xF800, 0x07E0, 0xABCD]);
+    words[0] = 0x001F;
+    assert_eq!(px[0], Rgb565::new(0, 0, 31));
+    let rgb = [Rgb888([1, 2, 3]), Rgb888([4, 5, 6])];
+    assert_eq!(
+        bytemuck::cast_slice::<Rgb888, u8>(&rgb),
+        &[1, 2, 3, 4, 5, 6]
+    );
+}
+
 #[test]
 fn band_rendering_equals_full_frame_f32_rgb565() {
     bands_equal_full::<f32, Rgb565>();

@@ -201,6 +201,8 @@ const fn level_to(level: u16, max: u32) -> u32 {
 /// byte order: swap the bytes for a display that wants big-endian).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+#[repr(transparent)]
 pub struct Rgb565(pub u16);
 
 impl Rgb565 {
@@ -252,6 +254,8 @@ impl PixelFormat for Rgb565 {
 /// A 24-bit pixel: 8 bits per channel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+#[repr(transparent)]
 pub struct Rgb888(pub [u8; 3]);
 
 impl PixelFormat for Rgb888 {
@@ -436,6 +440,18 @@ impl<'a, P: PixelFormat> Band<'a, P> {
         })
     }
 
+    /// Puts `pixels` in place of the band's pixel buffer and hands back the one it had (the
+    /// rows, their place in the frame and the depth band stay; the new buffer's contents are
+    /// kept: clear them): a finished band's buffer goes to a DMA transfer whole while the next
+    /// band is drawn into another, with no copy (the RP2040 firmware, with the `bytemuck`
+    /// feature to see the pixels as the DMA's words). `Err(pixels)`, the buffer handed back
+    /// untouched, when its length differs from the band's.
+    pub fn replace_pixels(&mut self, pixels: &'a mut [P]) -> Result<&'a mut [P], &'a mut [P]> {
+        if pixels.len() != self.pixels.len() {
+            return Err(pixels);
+        }
+        Ok(core::mem::replace(&mut self.pixels, pixels))
+    }
     /// Moves the band to start at frame row `y0` (the contents are kept: clear them).
     pub fn move_to(&mut self, y0: u16) {
         self.y0 = y0;

@@ -788,8 +788,9 @@ pub(crate) trait Stages {
 /// What [`Demo::render_frame_carrying`] hands its caller.
 #[derive(Debug)]
 pub enum Output<'a, 'b> {
-    /// A finished band, to send.
-    Band(&'a Band<'b, Rgb565>),
+    /// A finished band, to send (mutable: a sender may swap its pixel buffer for another,
+    /// [`Band::replace_pixels`], instead of copying it).
+    Band(&'a mut Band<'b, Rgb565>),
     /// The frame's last band, `rows` rows from `y0`, which no object reaches: not drawn; the
     /// caller sends it as [`BACKGROUND`] at the next [`Output::Carried`] (or now), instead of
     /// waiting for its turn at the display.
@@ -815,20 +816,20 @@ pub(crate) fn render_stages<S: Stages, E>(
     mut flush: impl FnMut(&Band<'_, Rgb565>) -> Result<(), E>,
 ) -> Result<FrameReport, FrameError<E>> {
     render_stages_carrying(scene, n, band, clock, false, |out| match out {
-        Output::Band(b) => flush(b),
+        Output::Band(b) => flush(&*b),
         Output::Keep { .. } | Output::Carried => Ok(()),
     })
 }
 
 /// [`render_stages`] handing the caller [`Output`]s: with `carry`, the last band is kept
 /// when no object reaches it, and [`Output::Carried`] follows every transform.
-pub(crate) fn render_stages_carrying<S: Stages, E>(
+pub(crate) fn render_stages_carrying<'b, S: Stages, E>(
     scene: &mut S,
     n: u32,
-    band: &mut Band<'_, Rgb565>,
+    band: &mut Band<'b, Rgb565>,
     clock: &mut impl FnMut() -> u32,
     carry: bool,
-    mut flush: impl FnMut(Output<'_, '_>) -> Result<(), E>,
+    mut flush: impl FnMut(Output<'_, 'b>) -> Result<(), E>,
 ) -> Result<FrameReport, FrameError<E>> {
     let mut report = FrameReport::default();
     let mut last = clock();
@@ -931,12 +932,12 @@ impl<'a, T: Real> Demo<'a, T> {
     ///
     /// # Errors
     /// The first error of the rasterizer or of `flush`.
-    pub fn render_frame_carrying<E>(
+    pub fn render_frame_carrying<'b, E>(
         &mut self,
         n: u32,
-        band: &mut Band<'_, Rgb565>,
+        band: &mut Band<'b, Rgb565>,
         clock: &mut impl FnMut() -> u32,
-        flush: impl FnMut(Output<'_, '_>) -> Result<(), E>,
+        flush: impl FnMut(Output<'_, 'b>) -> Result<(), E>,
     ) -> Result<FrameReport, FrameError<E>> {
         render_stages_carrying(self, n, band, clock, true, flush)
     }

@@ -206,7 +206,10 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
             let calls = fresh.prepare(&frame);
             let want = drawn(&fresh, &frame);
             assert_eq!(kept.prepare(&frame), calls, "{shading:?} frame {n}");
-            assert!(drawn(&kept, &frame) == want, "{shading:?} frame {n}, one core");
+            assert!(
+                drawn(&kept, &frame) == want,
+                "{shading:?} frame {n}, one core"
+            );
         }
     }
     let (mut b0, mut b1) = (
@@ -262,7 +265,7 @@ fn a_carried_last_band_gives_the_frames_of_render_frame() {
         let frames = [0u32, 1, 2, 60, 61, 119];
         for &n in &frames {
             demo.render_frame_carrying(n, &mut band, &mut || 0, |out| {
-                match out {
+                match &out {
                     demo_scene::Output::Band(b) => {
                         assert!(kept.is_none(), "frame {n}: a band before the kept one");
                         let at = b.y0() as usize * WIDTH as usize;
@@ -272,7 +275,7 @@ fn a_carried_last_band_gives_the_frames_of_render_frame() {
                     demo_scene::Output::Keep { y0, rows } => {
                         assert!(kept.is_none());
                         assert_eq!(y0 + rows, HEIGHT, "frame {n}: only the last band");
-                        kept = Some((y0, rows));
+                        kept = Some((*y0, *rows));
                         keeps += 1;
                         return Ok::<(), ()>(());
                     }

@@ -154,7 +154,7 @@ fn run() -> ! {
         embedded_hal::spi::MODE_0,
     );
     let dma = pac.DMA.split(&mut pac.RESETS);
-    let dma_buffer = singleton!(: DmaBuffer<PIXELS> = [0; PIXELS]).unwrap();
+    let dma_buffer = singleton!(: DmaBuffer<PIXELS> = [Rgb565(0); PIXELS]).unwrap();
     let mut display = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
 
     // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
@@ -184,7 +184,7 @@ fn run() -> ! {
     loop {
         let mut clock = || timer.get_counter_low();
         let result = demo.render_frame_carrying(n, &mut band, &mut clock, |out| match out {
-            Output::Band(band) => display.send(band),
+            Output::Band(band) => display.send_swapping(band),
             Output::Keep { y0, rows } => {
                 kept = Some((y0, rows));
                 Ok(())

@@ -21,8 +21,9 @@
 //!   frame's bands; [`SENDER`], behind another, the display's sender (the DMA channel, SPI and
 //!   pins). A core that has drawn a band takes the sender, sends the band (each band is its
 //!   own address window, so the order is free; the sender waits for the previous band's
-//!   transfer, copies the pixels into the DMA buffer and starts the transfer) and puts it
-//!   back.
+//!   transfer, takes the band's pixel buffer for the new one and gives the band the buffer
+//!   that has just been sent: three pixel buffers pass between the cores and the sender) and
+//!   puts it back.
 //! - A core that finds nothing to do waits for an event (`wfe`); the other core signals one
 //!   (`sev`) after every change to the handoff.
 //!
@@ -458,9 +459,11 @@ fn give_back(sender: Sender, k: u16, stats: &DrawStats, core: usize) {
 }
 
 /// Sends band `k` with `sender`, logging a failure (there is none: the pins' errors are
-/// `Infallible`).
-fn send(sender: &mut Sender, band: &Band<'_, Rgb565>, k: u16) {
-    if let Err(e) = sender.send(band) {
+/// `Infallible`). The band's pixel buffer goes to the DMA transfer and the band takes the
+/// sender's, whose transfer has ended (`BandSender::send_swapping`: no copy); the three pixel
+/// buffers, core 0's, core 1's and the sender's, pass from one to another.
+fn send(sender: &mut Sender, band: &mut Band<'static, Rgb565>, k: u16) {
+    if let Err(e) = sender.send_swapping(band) {
         defmt::error!("band {}: {}", k, defmt::Debug2Format(&e));
     }
 }
@@ -486,7 +489,7 @@ fn core1(buffers: &'static mut MeshBuffers<Fixed22>) {
             demo.draw_band(&frame, &mut band, &mut stats).unwrap();
             // (After the first band, which core 0 sends.)
             let mut sender = take_sender(|h| h.sent > 0);
-            send(&mut sender, &band, k);
+            send(&mut sender, &mut band, k);
             give_back(sender, k, &stats, 1);
         }
     }
@@ -557,7 +560,7 @@ fn run() -> ! {
         embedded_hal::spi::MODE_0,
     );
     let dma = pac.DMA.split(&mut pac.RESETS);
-    let dma_buffer = singleton!(: DmaBuffer = [0; BAND_PIXELS]).unwrap();
+    let dma_buffer = singleton!(: DmaBuffer = [Rgb565(0); BAND_PIXELS]).unwrap();
     let display: Sender = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
     critical_section::with(|cs| *SENDER.borrow_ref_mut(cs) = Some(display));
 
@@ -648,7 +651,7 @@ fn run() -> ! {
             let mut sender = take_sender(|h| !is_last || h.sent == last);
             let t2 = timer.get_counter_low();
             wait_us += t2.wrapping_sub(t1);
-            send(&mut sender, &band, k);
+            send(&mut sender, &mut band, k);
             send_us += timer.get_counter_low().wrapping_sub(t2);
             give_back(sender, k, &band_stats, 0);
             stats.rasterized += band_stats.rasterized;

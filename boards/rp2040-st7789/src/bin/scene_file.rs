@@ -144,7 +144,7 @@ fn run() -> ! {
         embedded_hal::spi::MODE_0,
     );
     let dma = pac.DMA.split(&mut pac.RESETS);
-    let dma_buffer = singleton!(: DmaBuffer<PIXELS> = [0; PIXELS]).unwrap();
+    let dma_buffer = singleton!(: DmaBuffer<PIXELS> = [Rgb565(0); PIXELS]).unwrap();
     let mut display = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
 
     // 9. One band: 240x40 RGB565 pixels and their 16-bit depths.
