@@ -473,9 +473,17 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     fn update_visible(&mut self, camera: &Camera<T>, cull: super::Cull) {
         let visible = Some((cull, camera.width, camera.height));
         if self.visible != visible {
-            self.find_visible(camera, cull);
-            self.visible = visible;
+            self.find_visible(camera, cull, |_| true);
+            self.visible_done(camera, cull);
         }
+    }
+
+    /// Records the visible-vertex pass as done for `cull` and the camera's viewport (the
+    /// triangles' rows with it, where the mesh records them).
+    fn visible_done(&mut self, camera: &Camera<T>, cull: super::Cull) {
+        let record = self.tri_rows.len() == self.mesh.triangles().len();
+        self.rows_cull = record.then_some(cull);
+        self.visible = Some((cull, camera.width, camera.height));
     }
 
     /// A vertex's unit normal (toward the viewer when `two_sided`) and unit view direction,
@@ -500,8 +508,16 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     /// of the triangles that will be drawn with `cull` (and records each triangle's rows
     /// where there are `tri_rows`). Cost: per triangle three vertex loads and a few integer
     /// tests (2 multiplications): 2.1 ms for the demo's 940 triangles on the RP2040 at 125
-    /// MHz (rp2040js), about 280 cycles a triangle.
-    fn find_visible(&mut self, camera: &Camera<T>, cull: super::Cull) {
+    /// MHz (rp2040js), about 280 cycles a triangle. Only the triangles whose index `mine`
+    /// accepts are visited (`PreparedMesh::find_visible_some`: two cores share the pass);
+    /// the vertices' marks are all cleared first. Marks the pass done nowhere: the caller does
+    /// ([`PreparedMesh::visible_done`]).
+    fn find_visible(
+        &mut self,
+        camera: &Camera<T>,
+        cull: super::Cull,
+        mine: impl Fn(usize) -> bool,
+    ) {
         for v in self.verts.iter_mut() {
             v.flags &= !NEEDED;
         }
@@ -511,6 +527,9 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         );
         let record = self.tri_rows.len() == self.mesh.triangles().len();
         for (k, tri) in self.mesh.triangles().iter().enumerate() {
+            if !mine(k) {
+                continue;
+            }
             let mut set = |r: TriangleRows| {
                 if record {
                     if let Some(slot) = self.tri_rows.get_mut(k) {
@@ -550,7 +569,6 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 }
             }
         }
-        self.rows_cull = record.then_some(cull);
     }
 }
 

@@ -195,6 +195,10 @@ pub struct Demo<'a, T> {
     /// The sphere was transformed this frame (by [`Demo::transform_share`]): its screen data
     /// go through the exchange; otherwise both cores already hold them.
     sphere_moved: bool,
+    /// Which of the sphere, the torus and the lamp made the visible-vertex pass over this
+    /// core's share of the triangles this frame ([`Demo::find_visible_share`]): those whose
+    /// marks and rows the cores exchange.
+    visible_shared: [bool; 3],
 }
 
 /// The scene's lit objects (for [`Demo::set_shading`]).
@@ -360,6 +364,7 @@ impl<'a, T: Real> Demo<'a, T> {
             table,
             sphere_at: None,
             sphere_moved: false,
+            visible_shared: [false; 3],
         })
     }
 
@@ -500,6 +505,103 @@ impl<'a, T: Real> Demo<'a, T> {
             .set_screen(camera, exchange.torus.iter().copied(), theirs);
         self.lamp
             .set_screen(camera, exchange.lamp.iter().copied(), theirs);
+    }
+
+    /// The visible-vertex pass of the shading ([`PreparedMesh::find_visible_some`]) over this
+    /// core's share of each object's triangles: those whose index is `core` modulo `cores`,
+    /// for each object whose pass is due (every frame for the torus and the lamp; for the
+    /// sphere, which stands still, only when its screen data are new). With two cores, after
+    /// [`Demo::import_screen`]: each makes the pass over its half, then each takes the
+    /// other's marks and rows through a [`VisibleExchange`] ([`Demo::export_visible`],
+    /// [`Demo::import_visible`]), and [`Demo::shade_share`] goes straight to its shader
+    /// calls: every triangle is visited once per frame instead of once on each core. Both
+    /// cores decide alike which objects take part. Returns how many did (0 once the
+    /// exchange has completed every pass).
+    pub fn find_visible_share(&mut self, core: usize, cores: usize) -> usize {
+        let mine = share(core, cores.max(1));
+        let camera = &self.camera;
+        self.visible_shared = [
+            self.sphere
+                .find_visible_some(camera, self.lit[0].cull, mine),
+            self.torus.find_visible_some(camera, self.lit[1].cull, mine),
+            self.lamp
+                .find_visible_some(camera, self.emissive.cull, mine),
+        ];
+        self.visible_shared.iter().filter(|&&s| s).count()
+    }
+
+    /// Writes this core's visible-vertex marks and its triangles' rows into `exchange` (after
+    /// [`Demo::find_visible_share`] with the same `core` and `cores`; `core` is 0 or 1).
+    pub fn export_visible(&self, exchange: &mut VisibleExchange, core: usize, cores: usize) {
+        let ours = share(core, cores.max(1));
+        let slot = core.min(1);
+        let objects: [(&PreparedMesh<'_, '_, T>, &mut [bool], &mut [TriangleRows]); 3] = [
+            (
+                &self.sphere,
+                &mut exchange.marks[slot].sphere,
+                &mut exchange.rows.sphere,
+            ),
+            (
+                &self.torus,
+                &mut exchange.marks[slot].torus,
+                &mut exchange.rows.torus,
+            ),
+            (
+                &self.lamp,
+                &mut exchange.marks[slot].lamp,
+                &mut exchange.rows.lamp,
+            ),
+        ];
+        for ((mesh, marks, rows), shared) in objects.into_iter().zip(self.visible_shared) {
+            if !shared {
+                continue;
+            }
+            for (d, m) in marks.iter_mut().zip(mesh.visible_marks()) {
+                *d = m;
+            }
+            for (k, (d, r)) in rows.iter_mut().zip(mesh.triangle_rows()).enumerate() {
+                if ours(k) {
+                    *d = r;
+                }
+            }
+        }
+    }
+
+    /// Takes from `exchange` the marks and triangle rows that core `core` of `cores` wrote
+    /// this frame, completing each shared object's visible-vertex pass.
+    pub fn import_visible(&mut self, exchange: &VisibleExchange, core: usize, cores: usize) {
+        let theirs = share(core, cores.max(1));
+        let marks = &exchange.marks[core.min(1)];
+        let rows = &exchange.rows;
+        let camera = &self.camera;
+        let [sphere, torus, lamp] = self.visible_shared;
+        if sphere {
+            self.sphere.set_visible(
+                camera,
+                self.lit[0].cull,
+                marks.sphere.iter().copied(),
+                rows.sphere.iter().copied(),
+                theirs,
+            );
+        }
+        if torus {
+            self.torus.set_visible(
+                camera,
+                self.lit[1].cull,
+                marks.torus.iter().copied(),
+                rows.torus.iter().copied(),
+                theirs,
+            );
+        }
+        if lamp {
+            self.lamp.set_visible(
+                camera,
+                self.emissive.cull,
+                marks.lamp.iter().copied(),
+                rows.lamp.iter().copied(),
+                theirs,
+            );
+        }
     }
 
     /// Gouraud: shades the visible vertices of the three objects once each
@@ -681,6 +783,56 @@ impl ColourExchange {
 }
 
 impl Default for ColourExchange {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// One frame's visible-vertex pass, as two cores share it (see [`Demo::find_visible_share`]):
+/// each core writes its vertices' marks and its triangles' rows, and reads the other's. 4.8
+/// KiB.
+#[derive(Clone, Debug)]
+pub struct VisibleExchange {
+    marks: [VisibleMarks; 2],
+    rows: ExchangedRows,
+}
+
+/// Each object's vertices as one core's pass marked them.
+#[derive(Clone, Debug)]
+struct VisibleMarks {
+    sphere: [bool; SPHERE_VERTICES],
+    torus: [bool; TORUS_VERTICES],
+    lamp: [bool; LAMP_VERTICES],
+}
+
+/// Each object's triangle rows (each core writes its own triangles').
+#[derive(Clone, Debug)]
+struct ExchangedRows {
+    sphere: [TriangleRows; SPHERE_TRIANGLES],
+    torus: [TriangleRows; TORUS_TRIANGLES],
+    lamp: [TriangleRows; LAMP_TRIANGLES],
+}
+
+impl VisibleExchange {
+    /// Nothing marked, no rows (a `const fn`, for a `static`).
+    pub const fn new() -> Self {
+        const MARKS: VisibleMarks = VisibleMarks {
+            sphere: [false; SPHERE_VERTICES],
+            torus: [false; TORUS_VERTICES],
+            lamp: [false; LAMP_VERTICES],
+        };
+        VisibleExchange {
+            marks: [MARKS; 2],
+            rows: ExchangedRows {
+                sphere: [TriangleRows::EMPTY; SPHERE_TRIANGLES],
+                torus: [TriangleRows::EMPTY; TORUS_TRIANGLES],
+                lamp: [TriangleRows::EMPTY; LAMP_TRIANGLES],
+            },
+        }
+    }
+}
+
+impl Default for VisibleExchange {
     fn default() -> Self {
         Self::new()
     }

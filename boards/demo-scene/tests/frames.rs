@@ -194,7 +194,7 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
     // its shade skips finding the visible vertices. Every frame must still be the pixels of
     // a `Demo` that never drew before, on one core and on two (the firmware's exchange,
     // here between two `Demo`s on the host), Gouraud and (one core) per pixel.
-    use demo_scene::{ColourExchange, ScreenExchange};
+    use demo_scene::{ColourExchange, ScreenExchange, VisibleExchange};
     let frames = [0, 1, 2, PERIOD / 3, PERIOD / 3 + 1, PERIOD - 1, 0];
     for shading in [Shading::Gouraud, Shading::PerPixel] {
         let mut kept_buffers = Box::new(MeshBuffers::<Fixed22>::new());
@@ -212,36 +212,62 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
             );
         }
     }
-    let (mut b0, mut b1) = (
-        Box::new(MeshBuffers::<Fixed22>::new()),
-        Box::new(MeshBuffers::<Fixed22>::new()),
-    );
-    let mut cores = [
-        Demo::new(&mut b0, Shading::Gouraud).unwrap(),
-        Demo::new(&mut b1, Shading::Gouraud).unwrap(),
-    ];
-    let mut screen = Box::new(ScreenExchange::<Fixed22>::new());
-    let mut colours = Box::new([ColourExchange::new(), ColourExchange::new()]);
-    for n in frames {
-        let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
-        let mut fresh = Demo::new(&mut fresh_buffers, Shading::Gouraud).unwrap();
-        let frame = fresh.frame(n).unwrap();
-        let calls = fresh.prepare(&frame);
-        let want = drawn(&fresh, &frame);
-        for (k, demo) in cores.iter_mut().enumerate() {
-            demo.transform_share(&frame, k, 2);
-            demo.export_screen(&mut screen, k, 2);
-        }
-        let mut shared = 0;
-        for (k, demo) in cores.iter_mut().enumerate() {
-            demo.import_screen(&screen, 1 - k, 2);
-            shared += demo.shade_share(&frame, k, 2);
-            demo.export_colours(&mut colours[k]);
-        }
-        assert_eq!(shared, calls, "frame {n}");
-        for (k, demo) in cores.iter_mut().enumerate() {
-            demo.import_colours(&colours[1 - k], 1 - k, 2);
-            assert!(drawn(demo, &frame) == want, "frame {n}, core {k} of two");
+    // Two cores, each shading its half of the visible vertices, with the visible-vertex
+    // pass made by each core over all the triangles or (the firmware's way) shared: each
+    // core's half of the triangles, the marks and rows exchanged.
+    for share_visible in [false, true] {
+        let (mut b0, mut b1) = (
+            Box::new(MeshBuffers::<Fixed22>::new()),
+            Box::new(MeshBuffers::<Fixed22>::new()),
+        );
+        let mut cores = [
+            Demo::new(&mut b0, Shading::Gouraud).unwrap(),
+            Demo::new(&mut b1, Shading::Gouraud).unwrap(),
+        ];
+        let mut screen = Box::new(ScreenExchange::<Fixed22>::new());
+        let mut visible = Box::new(VisibleExchange::new());
+        let mut colours = Box::new([ColourExchange::new(), ColourExchange::new()]);
+        for (i, n) in frames.into_iter().enumerate() {
+            let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
+            let mut fresh = Demo::new(&mut fresh_buffers, Shading::Gouraud).unwrap();
+            let frame = fresh.frame(n).unwrap();
+            let calls = fresh.prepare(&frame);
+            let want = drawn(&fresh, &frame);
+            for (k, demo) in cores.iter_mut().enumerate() {
+                demo.transform_share(&frame, k, 2);
+                demo.export_screen(&mut screen, k, 2);
+            }
+            for (k, demo) in cores.iter_mut().enumerate() {
+                demo.import_screen(&screen, 1 - k, 2);
+                if share_visible {
+                    // The torus's and the lamp's passes every frame, the sphere's (which
+                    // stands still) in the first.
+                    let due = if i == 0 { 3 } else { 2 };
+                    assert_eq!(demo.find_visible_share(k, 2), due, "frame {n}");
+                    demo.export_visible(&mut visible, k, 2);
+                }
+            }
+            let mut shared = 0;
+            for (k, demo) in cores.iter_mut().enumerate() {
+                if share_visible {
+                    demo.import_visible(&visible, 1 - k, 2);
+                    // Every pass complete: the shading makes none.
+                    assert_eq!(demo.find_visible_share(k, 2), 0, "frame {n}");
+                }
+                shared += demo.shade_share(&frame, k, 2);
+                demo.export_colours(&mut colours[k]);
+            }
+            assert_eq!(
+                shared, calls,
+                "frame {n}, visible pass shared: {share_visible}"
+            );
+            for (k, demo) in cores.iter_mut().enumerate() {
+                demo.import_colours(&colours[1 - k], 1 - k, 2);
+                assert!(
+                    drawn(demo, &frame) == want,
+                    "frame {n}, core {k} of two, visible pass shared: {share_visible}"
+                );
+            }
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Tests of `raster/prepared.rs`: the triangles' recorded band rows draw the same pixels as
 //! drawing every triangle in every band.
 
-use super::{PreparedMesh, PreparedVertex, TriangleRows};
+use super::{PreparedMesh, PreparedVertex, TriangleRows, VertexColour};
 use crate::raster::{
     mesh, Affine, Band, Camera, Cull, DrawOptions, EncodeTable, Encoding, Lit, Material, Mesh,
     Projection, Rgb565, Shading, Vertex,
@@ -146,6 +146,99 @@ fn a_mesh_shaded_again_without_a_transform_draws_as_a_fresh_one() {
             assert!(calls > 0, "step {k}");
             let want = draw(&fresh, &shading_camera, &opts);
             assert!(draw(&kept, &shading_camera, &opts) == want, "step {k}");
+        }
+    });
+}
+
+#[test]
+fn two_meshes_sharing_the_visible_pass_by_triangles_draw_as_one_pass() {
+    // Each of two prepared meshes finds the visible vertices of its half of the triangles
+    // (even and odd indices), takes the other's marks and rows, shades its half of the
+    // vertices and takes the other's colours: both must hold what one mesh that did it all
+    // holds (shader calls, rows, pixels), and the pass is not due again until a transform.
+    with_sphere_scene(|sphere, shader, table| {
+        let draw = |m: &PreparedMesh<'_, '_, f32>, cam: &Camera<f32>, opts: &DrawOptions<f32>| {
+            let mut frame = [Rgb565(0); 64 * 64];
+            let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
+            let mut band = Band::new(&mut px, Some(&mut depth), 64, 0).unwrap();
+            for y0 in (0..64).step_by(8) {
+                band.move_to(y0);
+                band.clear(Rgb565(1));
+                m.draw(cam, &mut band, shader, opts, table).unwrap();
+                let at = y0 as usize * 64;
+                frame[at..at + 64 * 8].copy_from_slice(band.pixels());
+            }
+            frame
+        };
+        for (eye, cull) in [
+            (Vec3::new(0.0, 0.0, 4.0), Cull::Back),
+            (Vec3::new(0.5, 1.0, 2.5), Cull::None),
+            (Vec3::new(0.0, 0.3, 1.2), Cull::Back),
+        ] {
+            let cam = camera(eye, 64);
+            let mut opts = DrawOptions::new(Shading::Gouraud);
+            opts.cull = cull;
+            let (mut s0, mut r0) = ([PreparedVertex::EMPTY; 17 * 9], [TriangleRows::EMPTY; 224]);
+            let mut one = PreparedMesh::with_triangle_rows(sphere, &mut s0, &mut r0).unwrap();
+            one.transform(&cam, &Affine::identity());
+            let calls = one.shade(&cam, shader, &opts);
+            let want = draw(&one, &cam, &opts);
+            assert!(want.iter().filter(|p| p.0 != 1).count() > 200);
+
+            let (mut sa, mut ra) = ([PreparedVertex::EMPTY; 17 * 9], [TriangleRows::EMPTY; 224]);
+            let (mut sb, mut rb) = ([PreparedVertex::EMPTY; 17 * 9], [TriangleRows::EMPTY; 224]);
+            let mut a = PreparedMesh::with_triangle_rows(sphere, &mut sa, &mut ra).unwrap();
+            let mut b = PreparedMesh::with_triangle_rows(sphere, &mut sb, &mut rb).unwrap();
+            let (even, odd) = (|i: usize| i % 2 == 0, |i: usize| i % 2 == 1);
+            for m in [&mut a, &mut b] {
+                m.transform(&cam, &Affine::identity());
+            }
+            assert!(a.find_visible_some(&cam, cull, even));
+            assert!(b.find_visible_some(&cam, cull, odd));
+            let marks = |m: &PreparedMesh<'_, '_, f32>| {
+                let mut out = [false; 17 * 9];
+                for (o, v) in out.iter_mut().zip(m.visible_marks()) {
+                    *o = v;
+                }
+                out
+            };
+            let rows = |m: &PreparedMesh<'_, '_, f32>| {
+                let mut out = [TriangleRows::EMPTY; 224];
+                for (o, r) in out.iter_mut().zip(m.triangle_rows()) {
+                    *o = r;
+                }
+                out
+            };
+            let (marks_a, rows_a, marks_b, rows_b) = (marks(&a), rows(&a), marks(&b), rows(&b));
+            // Each half alone misses vertices the whole pass finds.
+            let mut whole = marks_a;
+            for (w, m) in whole.iter_mut().zip(marks_b) {
+                *w |= m;
+            }
+            let count = |m: &[bool]| m.iter().filter(|&&x| x).count();
+            assert!(count(&whole) > count(&marks_a) && count(&whole) > count(&marks_b));
+            a.set_visible(&cam, cull, marks_b, rows_b, odd);
+            b.set_visible(&cam, cull, marks_a, rows_a, even);
+            for m in [&a, &b] {
+                assert!(m.triangle_rows().eq(one.triangle_rows()));
+                assert_eq!(marks(m), whole);
+            }
+            assert!(!a.find_visible_some(&cam, cull, even));
+            let shared =
+                a.shade_some(&cam, shader, &opts, even) + b.shade_some(&cam, shader, &opts, odd);
+            assert_eq!(shared, calls);
+            let mut colours = [[VertexColour::BLACK; 17 * 9]; 2];
+            for (k, m) in [&a, &b].into_iter().enumerate() {
+                for (o, c) in colours[k].iter_mut().zip(m.colours()) {
+                    *o = c;
+                }
+            }
+            a.set_colours(colours[1], odd);
+            b.set_colours(colours[0], even);
+            assert!(draw(&a, &cam, &opts) == want);
+            assert!(draw(&b, &cam, &opts) == want);
+            a.transform(&cam, &Affine::identity());
+            assert!(a.find_visible_some(&cam, cull, even));
         }
     });
 }
