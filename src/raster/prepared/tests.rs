@@ -35,6 +35,35 @@ fn camera(eye: Vec3<f32>, width: u16) -> Camera<f32> {
     .unwrap()
 }
 
+/// The 64 rows `m` draws with `cam` (at most 64 wide) through 8-row bands cleared to
+/// `Rgb565(1)`, row-major.
+fn draw_frame(
+    m: &PreparedMesh<'_, '_, f32>,
+    cam: &Camera<f32>,
+    shader: &Lit<'_, f32, SphereLight<f32>>,
+    opts: &DrawOptions<f32>,
+    table: &EncodeTable<Rgb565>,
+) -> [Rgb565; 64 * 64] {
+    let mut frame = [Rgb565(0); 64 * 64];
+    let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
+    let width = usize::from(cam.width);
+    let mut band = Band::new(
+        &mut px[..width * 8],
+        Some(&mut depth[..width * 8]),
+        cam.width,
+        0,
+    )
+    .unwrap();
+    for y0 in (0..64).step_by(8) {
+        band.move_to(y0);
+        band.clear(Rgb565(1));
+        m.draw(cam, &mut band, shader, opts, table).unwrap();
+        let at = y0 as usize * width;
+        frame[at..at + width * 8].copy_from_slice(band.pixels());
+    }
+    frame
+}
+
 #[test]
 fn triangle_rows_draw_the_same_pixels() {
     with_sphere_scene(|sphere, shader, table| {
@@ -84,24 +113,7 @@ fn a_mesh_shaded_again_without_a_transform_draws_as_a_fresh_one() {
     with_sphere_scene(|sphere, shader, table| {
         let (near, side) = (Vec3::new(0.3, 0.2, 1.6), Vec3::new(1.5, 0.4, 2.0));
         let draw = |m: &PreparedMesh<'_, '_, f32>, cam: &Camera<f32>, opts: &DrawOptions<f32>| {
-            let mut frame = [Rgb565(0); 64 * 64];
-            let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
-            let width = usize::from(cam.width);
-            let mut band = Band::new(
-                &mut px[..width * 8],
-                Some(&mut depth[..width * 8]),
-                cam.width,
-                0,
-            )
-            .unwrap();
-            for y0 in (0..64).step_by(8) {
-                band.move_to(y0);
-                band.clear(Rgb565(1));
-                m.draw(cam, &mut band, shader, opts, table).unwrap();
-                let at = y0 as usize * width;
-                frame[at..at + width * 8].copy_from_slice(band.pixels());
-            }
-            frame
+            draw_frame(m, cam, shader, opts, table)
         };
         let mut storage = [PreparedVertex::EMPTY; 17 * 9];
         let mut rows = [TriangleRows::EMPTY; 2 * 16 * 7];
@@ -158,17 +170,7 @@ fn two_meshes_sharing_the_visible_pass_by_triangles_draw_as_one_pass() {
     // holds (shader calls, rows, pixels), and the pass is not due again until a transform.
     with_sphere_scene(|sphere, shader, table| {
         let draw = |m: &PreparedMesh<'_, '_, f32>, cam: &Camera<f32>, opts: &DrawOptions<f32>| {
-            let mut frame = [Rgb565(0); 64 * 64];
-            let (mut px, mut depth) = ([Rgb565(0); 64 * 8], [0u16; 64 * 8]);
-            let mut band = Band::new(&mut px, Some(&mut depth), 64, 0).unwrap();
-            for y0 in (0..64).step_by(8) {
-                band.move_to(y0);
-                band.clear(Rgb565(1));
-                m.draw(cam, &mut band, shader, opts, table).unwrap();
-                let at = y0 as usize * 64;
-                frame[at..at + 64 * 8].copy_from_slice(band.pixels());
-            }
-            frame
+            draw_frame(m, cam, shader, opts, table)
         };
         for (eye, cull) in [
             (Vec3::new(0.0, 0.0, 4.0), Cull::Back),
