@@ -5,6 +5,7 @@
 //
 //   node run.mjs --elf PATH [--frames N] [--dual] [--dump-frames DIR] [--max-cycles C]
 //                [--profile] [--profile-every K] [--profile-from C] [--profile-pcs FILE] [--until TEXT]
+//                [--stack]
 //
 // --profile-from C samples only from core 0's cycle C on (e.g. the start of frame 1, from a
 // first run's `end_cycle` of frame 0); --profile-pcs FILE also writes every sampled PC with
@@ -12,6 +13,11 @@
 //
 // --until TEXT runs until a defmt line contains TEXT (a firmware that sends no frames, e.g.
 // `calibrate`), instead of until N frames.
+//
+// --stack paints core 0's stack (the RAM between the statics' end, `__euninit`, and
+// `_stack_start`) with 0xA5 bytes before the reset and reports in the summary how much of it
+// the run used (`stack_used`, bytes from the top down to the deepest byte written; the
+// cortex-m-rt start-up touches only the statics), and the region's size (`stack_region`).
 //
 // Exits non-zero on a fault (BKPT/UDF, e.g. panic-probe; unimplemented instruction; unmapped
 // memory), a defmt error line, a malformed ST7789 stream, or the cycle budget running out
@@ -50,6 +56,7 @@ const { values: opts } = parseArgs({
     'profile-pcs': { type: 'string' },
     quiet: { type: 'boolean', default: false },
     until: { type: 'string' },
+    stack: { type: 'boolean', default: false },
   },
 });
 if (!opts.elf) {
@@ -62,6 +69,19 @@ const log = (line) => opts.quiet || console.log(line);
 
 const elf = parseElf(readFileSync(opts.elf));
 const machine = new Machine(elf, { cores: opts.dual ? 2 : 1 });
+const RAM_BASE = 0x20000000;
+const PAINT = 0xa5;
+const stackRegion = (() => {
+  if (!opts.stack) return null;
+  const lo = elf.symbol('__euninit');
+  const hi = elf.symbol('_stack_start');
+  if (!lo || !hi) {
+    console.error('--stack: the ELF has no __euninit or _stack_start symbol');
+    process.exit(2);
+  }
+  machine.rp2040.sram.fill(PAINT, lo.value - RAM_BASE, hi.value - RAM_BASE);
+  return { lo: lo.value, hi: hi.value };
+})();
 const { rp2040, clock } = machine;
 const errors = [];
 
@@ -215,5 +235,13 @@ const summary = {
   defmt: defmtLines,
   errors,
 };
+if (stackRegion) {
+  const { lo, hi } = stackRegion;
+  const ram = machine.rp2040.sram;
+  let deepest = lo;
+  while (deepest < hi && ram[deepest - RAM_BASE] === PAINT) deepest += 1;
+  summary.stack_region = hi - lo;
+  summary.stack_used = hi - deepest;
+}
 console.log(JSON.stringify(summary));
 process.exit(errors.length ? 1 : 0);
