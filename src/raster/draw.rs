@@ -180,9 +180,9 @@ pub(super) fn raster_triangle<T, P, S>(
     let Some(tri) = EdgeTriangle::new(fp, opts.cull) else {
         return;
     };
-    if tri.pixel_bounds(camera.width as i32, row0, row1).is_none() {
+    let Some(bounds) = tri.pixel_bounds(camera.width as i32, row0, row1) else {
         return;
-    }
+    };
     stats.rasterized = stats.rasterized.wrapping_add(1);
     let order = if tri.swapped() { [0, 2, 1] } else { [0, 1, 2] };
     let vs = [v[order[0]], v[order[1]], v[order[2]]];
@@ -196,7 +196,6 @@ pub(super) fn raster_triangle<T, P, S>(
     let (near, far) = (camera.near, camera.far);
     let depth_scale = T::ONE / (far - near);
     let has_depth = band.has_depth();
-    let width = camera.width as i32;
     // Barycentric weights: exact (from the integer edge functions, through f64) at the first
     // covered pixel of each row, then stepped by a per-triangle increment along the row, so a
     // pixel costs 3 additions in `T` instead of 3 double-precision products (soft-float on
@@ -205,7 +204,7 @@ pub(super) fn raster_triangle<T, P, S>(
     // (f32: 240 x 6e-8 relative; Fixed22: 240 x 2^-22).
     let mut row: Option<(i32, i32, [i64; 3], [T; 3])> = None;
     let mut dl: Option<[T; 3]> = None;
-    tri.for_each_covered(width, row0, row1, |x, y, e| {
+    tri.for_each_covered_in(bounds, |x, y, e| {
         let l: [T; 3] = match row {
             Some((ry, rx, re, rl)) if ry == y && rx + 1 == x => {
                 let d = *dl.get_or_insert_with(|| {

@@ -245,9 +245,19 @@ impl EdgeTriangle {
     /// demo's Gouraud frame (`boards/qemu-frame`, Cortex-M4F, 2 959 spans of 586 triangles):
     /// about 135 instructions a row, against 180 when each row walked from the box's left edge.
     pub fn for_each_span<F: FnMut(i32, i32, i32)>(&self, width: i32, row0: i32, row1: i32, f: F) {
-        let Some((x0, y0, x1, y1)) = self.pixel_bounds(width, row0, row1) else {
-            return;
-        };
+        if let Some(bounds) = self.pixel_bounds(width, row0, row1) {
+            self.for_each_span_in(bounds, f);
+        }
+    }
+
+    /// [`EdgeTriangle::for_each_span`] over the pixel box `(x0, y0, x1, y1)` that
+    /// [`EdgeTriangle::pixel_bounds`] gave (for a caller that has it already).
+    #[inline(always)]
+    pub(crate) fn for_each_span_in<F: FnMut(i32, i32, i32)>(
+        &self,
+        (x0, y0, x1, y1): (i32, i32, i32, i32),
+        f: F,
+    ) {
         let v = self.v;
         // A triangle within 1024 pixels each way (any on a display) has every edge function
         // over its bounding box below 2^29 in magnitude (and one pixel beyond it, where a
@@ -350,11 +360,20 @@ impl EdgeTriangle {
         width: i32,
         row0: i32,
         row1: i32,
+        f: F,
+    ) {
+        if let Some(bounds) = self.pixel_bounds(width, row0, row1) {
+            self.for_each_covered_in(bounds, f);
+        }
+    }
+
+    /// [`EdgeTriangle::for_each_covered`] over the pixel box `(x0, y0, x1, y1)` that
+    /// [`EdgeTriangle::pixel_bounds`] gave (for a caller that has it already).
+    pub(crate) fn for_each_covered_in<F: FnMut(i32, i32, [i64; 3])>(
+        &self,
+        (x0, y0, x1, y1): (i32, i32, i32, i32),
         mut f: F,
     ) {
-        let Some((x0, y0, x1, y1)) = self.pixel_bounds(width, row0, row1) else {
-            return;
-        };
         let v = self.v;
         // d/dx of edge k (one pixel = SUBPIXEL units): -(b.y - a.y) SUBPIXEL.
         let step: [i64; 3] = core::array::from_fn(|k| {

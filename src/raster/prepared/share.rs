@@ -139,7 +139,7 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
     /// [`PreparedMesh::shade_some`] goes straight to its shader calls. Both cores decide the
     /// same (the same screen data): run the exchange when this returns `true`.
     ///
-    /// Cost: the pass's per accepted triangle (about 250 cycles on the RP2040, rp2040js) and
+    /// Cost: the pass's per accepted triangle (about 280 cycles on the RP2040, rp2040js) and
     /// a clear of every vertex's mark.
     pub fn find_visible_some(
         &mut self,
