@@ -392,7 +392,21 @@ pub(super) fn raster<T, P, S>(
 /// A depth value with [`DEPTH_FRAC`] fraction bits as the band's 16 bits (clamped).
 #[inline(always)]
 fn depth16(q: i32) -> u16 {
-    (q >> (DEPTH_FRAC - 16)).clamp(0, u16::MAX as i32) as u16
+    let z = q >> (DEPTH_FRAC - 16);
+    // One unsigned comparison on the common path, the clamp out of line (as the colour
+    // table's index: `EncodeTable::pixel`).
+    if (z as u32) <= u32::from(u16::MAX) {
+        z as u16
+    } else {
+        depth_out_of_range(z)
+    }
+}
+
+/// [`depth16`] of a depth below 0 or beyond the 16 bits, clamped (cold).
+#[cold]
+#[inline(never)]
+fn depth_out_of_range(z: i32) -> u16 {
+    z.clamp(0, u16::MAX as i32) as u16
 }
 
 #[cfg(test)]

@@ -235,10 +235,13 @@ impl PixelFormat for Rgb565 {
     fn table_entry(level: u16) -> u16 {
         ((level_to(level, 31) << 11) | (level_to(level, 63) << 5) | level_to(level, 31)) as u16
     }
-    /// Red's bits of `r`, green's of `g`, blue's of `b`.
+    /// Red's bits of `r`, green's of `g`, blue's of `b`. An entry holds its 5-bit level at
+    /// both ends (bits 0-4 and 11-15), so red is the entry shifted up by 11 (the 16-bit
+    /// result drops the rest) and blue the entry shifted down by 11: one shift each instead
+    /// of a mask, whose constants the Cortex-M0+ keeps on the stack in the span loop.
     #[inline(always)]
     fn from_entries(r: u16, g: u16, b: u16) -> Self {
-        Rgb565((r & 0xF800) | (g & 0x07E0) | (b & 0x001F))
+        Rgb565((r << 11) | (g & 0x07E0) | (b >> 11))
     }
     #[inline]
     fn to_rgb8(self) -> [u8; 3] {
@@ -373,7 +376,13 @@ impl<P: PixelFormat> EncodeTable<P> {
     #[inline(always)]
     pub fn pixel(&self, r: i32, g: i32, b: i32) -> P {
         let at = |i: i32| {
-            let i = i.clamp(0, (ENCODE_ENTRIES - 1) as i32) as usize;
+            // One unsigned comparison on the common path (an index in range), the clamp
+            // only out of it.
+            let i = if (i as u32) < ENCODE_ENTRIES as u32 {
+                i as usize
+            } else {
+                index_out_of_range(i)
+            };
             // (`i` is in range: the fallback is never taken.)
             self.entries
                 .get(i)
@@ -382,6 +391,14 @@ impl<P: PixelFormat> EncodeTable<P> {
         };
         P::from_entries(at(r), at(g), at(b))
     }
+}
+
+/// An [`EncodeTable`] index below 0 or above 4096, clamped (cold: out of line, so that the
+/// span loops keep one comparison per channel).
+#[cold]
+#[inline(never)]
+fn index_out_of_range(i: i32) -> usize {
+    i.clamp(0, (ENCODE_ENTRIES - 1) as i32) as usize
 }
 
 /// The depth value of a cleared depth band (farthest).
