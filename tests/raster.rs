@@ -837,3 +837,32 @@ mod eg {
         assert!(frame.0[..39].iter().all(|c| Rgb565::from(*c) == Rgb565(0)));
     }
 }
+
+/// `Band::clear` fills every pixel and every depth value whatever the buffers' alignment and
+/// length (with the `bytemuck` feature it stores 32-bit words between an unaligned first and
+/// last value; without it, 16-bit values), and touches nothing outside the band.
+#[test]
+fn clear_fills_bands_at_every_alignment_and_length() {
+    use arealight::raster::DEPTH_FAR;
+    let colour = Rgb565::new(3, 50, 17);
+    for start in 0..4usize {
+        for len in [1usize, 2, 3, 7, 8, 9, 33, 240] {
+            let mut px = vec![Rgb565(0x1234); len + 8];
+            let mut depth = vec![7u16; len + 8];
+            {
+                let (p, d) = (&mut px[start..start + len], &mut depth[start..start + len]);
+                let mut band = Band::new(p, Some(d), len as u16, 0).unwrap();
+                band.clear(colour);
+            }
+            for (i, (p, d)) in px.iter().zip(&depth).enumerate() {
+                let inside = (start..start + len).contains(&i);
+                assert_eq!(
+                    *p,
+                    if inside { colour } else { Rgb565(0x1234) },
+                    "pixel {i}"
+                );
+                assert_eq!(*d, if inside { DEPTH_FAR } else { 7 }, "depth {i}");
+            }
+        }
+    }
+}

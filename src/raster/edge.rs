@@ -126,7 +126,7 @@ pub struct EdgeTriangle {
     /// Twice the signed area (positive), in sub-pixel units squared.
     area: i64,
     /// 0 for a top-left edge, -1 otherwise: `E + bias >= 0` is the fill rule.
-    bias: [i64; 3],
+    bias: [i32; 3],
     /// Whether the input's vertices 1 and 2 were swapped to make the orientation positive.
     swapped: bool,
 }
@@ -212,7 +212,7 @@ impl EdgeTriangle {
     #[inline]
     pub fn covers(&self, p: FixedPoint) -> bool {
         let e = self.weights_at(p);
-        (0..3).all(|k| e[k] + self.bias[k] >= 0)
+        (0..3).all(|k| e[k] + i64::from(self.bias[k]) >= 0)
     }
 
     /// The pixel rectangle `(x0, y0, x1, y1)` (inclusive) whose centres may be covered,
@@ -274,7 +274,7 @@ impl EdgeTriangle {
             // plain i32 products (exact: below 2^29), not 32 x 32 -> 64-bit ones.
             let start = core::array::from_fn(|k| {
                 let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                i64::from((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x))
+                (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)
             });
             self.scan::<i32, F>((x0, y0, x1, y1), start, f);
         } else {
@@ -300,11 +300,11 @@ impl EdgeTriangle {
     fn scan<E: EdgeInt, F: FnMut(i32, i32, i32)>(
         &self,
         (x0, y0, x1, y1): (i32, i32, i32, i32),
-        start: [i64; 3],
+        start: [E; 3],
         f: F,
     ) {
         let v = self.v;
-        let zero = E::from_i64(0);
+        let zero = E::from_i32(0);
         let unused = Bound {
             x: x0,
             value: zero,
@@ -317,13 +317,15 @@ impl EdgeTriangle {
         for k in 0..3 {
             let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
             // d/dx (one pixel = SUBPIXEL units) -(b.y - a.y) SUBPIXEL, d/dy (b.x - a.x)
-            // SUBPIXEL: exact integer steps.
-            let step = -(b.y as i64 - a.y as i64) * SUBPIXEL as i64;
+            // SUBPIXEL: exact integer steps, in i32 (coordinates within MAX_COORD = 2^24:
+            // below 2^29 in magnitude), not in 64-bit arithmetic on a 32-bit core.
+            let step = -(b.y - a.y) * SUBPIXEL;
             let edge = Bound {
                 x: x0,
-                value: E::from_i64(start[k] + self.bias[k]),
-                step: E::from_i64(step),
-                row: E::from_i64((b.x as i64 - a.x as i64) * SUBPIXEL as i64),
+                // (The bias is 0 or -1: exact in any `E`.)
+                value: start[k] + E::from_i32(self.bias[k]),
+                step: E::from_i32(step),
+                row: E::from_i32((b.x - a.x) * SUBPIXEL),
             };
             let (slots, n) = if step > 0 {
                 (&mut left, &mut nl)
@@ -380,11 +382,11 @@ impl EdgeTriangle {
             let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
             -(b.y as i64 - a.y as i64) * SUBPIXEL as i64
         });
+        let bias = self.bias.map(i64::from);
         for y in y0..=y1 {
             let mut e = self.weights_at(FixedPoint::pixel_centre(x0, y));
             for x in x0..=x1 {
-                if e[0] + self.bias[0] >= 0 && e[1] + self.bias[1] >= 0 && e[2] + self.bias[2] >= 0
-                {
+                if e[0] + bias[0] >= 0 && e[1] + bias[1] >= 0 && e[2] + bias[2] >= 0 {
                     f(x, y, e);
                 }
                 e[0] += step[0];
@@ -445,7 +447,7 @@ impl<E: EdgeInt> Bound<E> {
     /// then left while the pixel before is not.
     #[inline(always)]
     fn settle_left(&mut self, x0: i32, x1: i32) {
-        let zero = E::from_i64(0);
+        let zero = E::from_i32(0);
         while self.value < zero && self.x <= x1 {
             self.value = self.value + self.step;
             self.x += 1;
@@ -461,7 +463,7 @@ impl<E: EdgeInt> Bound<E> {
     /// next pixel is not.
     #[inline(always)]
     fn settle_right(&mut self, x0: i32, x1: i32) {
-        let zero = E::from_i64(0);
+        let zero = E::from_i32(0);
         while self.value < zero && self.x >= x0 {
             self.value = self.value - self.step;
             self.x -= 1;
@@ -478,20 +480,20 @@ impl<E: EdgeInt> Bound<E> {
 trait EdgeInt:
     Copy + PartialOrd + core::ops::Add<Output = Self> + core::ops::Sub<Output = Self>
 {
-    /// From an `i64` known to fit.
-    fn from_i64(x: i64) -> Self;
+    /// From an `i32` (exact).
+    fn from_i32(x: i32) -> Self;
 }
 
 impl EdgeInt for i32 {
     #[inline(always)]
-    fn from_i64(x: i64) -> Self {
-        x as i32
+    fn from_i32(x: i32) -> Self {
+        x
     }
 }
 
 impl EdgeInt for i64 {
     #[inline(always)]
-    fn from_i64(x: i64) -> Self {
-        x
+    fn from_i32(x: i32) -> Self {
+        i64::from(x)
     }
 }
