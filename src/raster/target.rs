@@ -442,14 +442,23 @@ fn fill_u16(s: &mut [u16], v: u16) {
 
 /// Fills `words` with `w`, four words a loop step. The value is hidden from LLVM
 /// (`black_box`), which would otherwise call `memset`: on the Cortex-M0+
-/// compiler-builtins' stores one word a loop step.
+/// compiler-builtins' stores one word a loop step. Out of line, so that the caller's live
+/// values leave it the registers for `STM` (rp2040js frames 1 to 15, one core: 8 265 110 ->
+/// 8 255 792 cycles against the inlined fill of one hidden copy).
 #[cfg(feature = "bytemuck")]
-#[inline(always)]
+#[inline(never)]
 fn fill_words(words: &mut [u32], w: u32) {
-    let w = core::hint::black_box(w);
+    // Four copies, each hidden on its own: four registers, which the Cortex-M0+ stores with
+    // one `STM` (5 cycles for 16 bytes, against 8 for four `STR` of one register).
+    let q = [
+        core::hint::black_box(w),
+        core::hint::black_box(w),
+        core::hint::black_box(w),
+        core::hint::black_box(w),
+    ];
     let mut chunks = words.chunks_exact_mut(4);
     for c in &mut chunks {
-        c.copy_from_slice(&[w; 4]);
+        c.copy_from_slice(&q);
     }
     chunks.into_remainder().fill(w);
 }
