@@ -47,7 +47,7 @@ pub const CHIPS: &[Chip] = &[
         what: "RP2040 (Cortex-M0+, 125 MHz, one core), boards/rp2040-st7789 lit_scene: cycles in rp2040js",
         mhz: 125.0,
         unit: "cycles",
-        band_rows: 40,
+        band_rows: 60,
         cores: 1,
         backends: &["fixed", "f32-fast", "f32"],
     },

@@ -1,6 +1,6 @@
 //! arealight on a Raspberry Pi Pico: a sphere and a tumbling torus under a rectangular area
 //! light and an orbiting sphere light, shaded in fixed point (`Fixed22`: the RP2040's
-//! Cortex-M0+ has no FPU) and streamed to a 240x240 ST7789 display in 240x40 bands. Each
+//! Cortex-M0+ has no FPU) and streamed to a 240x240 ST7789 display in 240x60 bands. Each
 //! frame's time goes to the defmt log (`cargo run --release` with probe-rs prints it).
 //!
 //! Wiring (the Waveshare Pico-LCD-1.3's pins; any 240x240 ST7789 module wired the same way
@@ -47,11 +47,15 @@ pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 /// The scene's meshes, per-frame vertex data and gamma table (see step 9).
 static BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> = ConstStaticCell::new(MeshBuffers::new());
 
-/// Rows per band: 40, six bands per frame. Taller bands than the scene's default 16 mean fewer
+/// Rows per band: 60, four bands per frame. Taller bands than the scene's default 16 mean fewer
 /// triangles set up twice (once per band they cross) and fewer passes over the meshes: 8 %
-/// fewer cycles per frame in rp2040js, for 45 KiB of band, depth and DMA buffers (the
-/// two-core firmware keeps 16-row bands: it has two of everything). It must divide the height.
-const ROWS: u16 = 40;
+/// fewer cycles per frame in rp2040js with 40 rows, for 45 KiB of band, depth and DMA buffers
+/// (the two-core firmware keeps 16-row bands: it has two of everything). Frames 1 to 15 of
+/// `run.mjs --frames 16`, on average: 8 255 792 cycles with 40 rows, 8 181 631 with 48,
+/// 8 104 917 with 60 (84 KiB of buffers), 8 387 657 with 80 (the frame's last band, a third of
+/// it, then waits for the SPI), 8 057 912 with 120 (169 KiB: little left for the stack). It
+/// must divide the height.
+const ROWS: u16 = 60;
 const PIXELS: usize = WIDTH as usize * ROWS as usize;
 const _: () = assert!(HEIGHT % ROWS == 0);
 
@@ -166,8 +170,8 @@ fn run() -> ! {
     let buffers = BUFFERS.take();
     let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
 
-    // 10. One band: 240x40 RGB565 pixels and their 16-bit depths (19 KiB each). The whole
-    //     frame is rendered through it, 6 times per frame.
+    // 10. One band: 240x60 RGB565 pixels and their 16-bit depths (28 KiB each). The whole
+    //     frame is rendered through it, 4 times per frame.
     let pixels = singleton!(: [Rgb565; PIXELS] = [Rgb565(0); PIXELS]).unwrap();
     let depth = singleton!(: [u16; PIXELS] = [0; PIXELS]).unwrap();
     let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
