@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 106 | 236 | 1080 | 1287 | 872 | 1016 |
-//! | `sphere_lambert_hermite` | 117 | 248 | 1096 | 1302 | 892 | 1036 |
-//! | `polygon_lambert` | 495 | 1089 | 3832 | 4442 | 3008 | 3413 |
-//! | `phong_sphere` | 493 | 616 | 5074 | 5181 | 4036 | 4170 |
-//! | `phong_polygon` | 1900 | 2626 | 11861 | 12683 | 7874 | 8356 |
+//! | `sphere_lambert` | 99 | 229 | 1080 | 1287 | 872 | 1016 |
+//! | `sphere_lambert_hermite` | 110 | 241 | 1096 | 1302 | 892 | 1036 |
+//! | `polygon_lambert` | 497 | 1089 | 3832 | 4442 | 3008 | 3413 |
+//! | `phong_sphere` | 486 | 608 | 5074 | 5181 | 4036 | 4170 |
+//! | `phong_polygon` | 1856 | 2584 | 11861 | 12683 | 7874 | 8356 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole
