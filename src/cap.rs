@@ -262,7 +262,7 @@ impl<T: Real> CapLight<T> {
     ///
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
-    /// the fillet (out of line) also 1 sqrt and 2 atan2: median 49 instructions a call on the
+    /// the fillet (out of line) also 1 sqrt and 2 atan2: median 47 instructions a call on the
     /// Cortex-M4F in f32, 28 with a `UnitVec3`; 400 and 118 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact; 52 and 33, 405 and 120 with the fully lit term clamped at both ends;
     /// 449 and 163 with its products' saturation tests).
@@ -315,7 +315,7 @@ impl<T: Real> CapLight<T> {
     ///
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and the chord's squared length
     /// `|n - axis|^2` (`c = 1 - |n - axis|^2/2`, accurate near 1); only in the fillet (out of
-    /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 61 instructions a call
+    /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 59 instructions a call
     /// on the Cortex-M4F in f32, 39 with a `UnitVec3`; 444 and 156 on the Cortex-M0 in
     /// `Fixed22` (QEMU, exact; before the fillet test, 179/158 and 1499/1167).
     /// Fallback: 0 for a zero or non-finite `n`.
@@ -480,8 +480,8 @@ impl<T: Real> SphereLight<T> {
     ///
     /// Accuracy: measured, below. Cost: 2 normalizations, 1 division, 1 sqrt (fixed point: no
     /// division, both ratios from the normalization's reciprocal square root); in the
-    /// fillet (out of line) also 1 sqrt and 2 atan2: median 106 instructions a call on the
-    /// Cortex-M4F in f32, 97 with a `UnitVec3`; 1080 and 795 on the Cortex-M0 in `Fixed22`
+    /// fillet (out of line) also 1 sqrt and 2 atan2: median 99 instructions a call on the
+    /// Cortex-M4F in f32, 93 with a `UnitVec3`; 1080 and 795 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact). Fallback: 0 for a point inside or on the sphere, or a zero or
     /// non-finite input.
     ///

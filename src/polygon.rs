@@ -342,8 +342,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `Fixed22` each of its edges within a right angle takes the arc ratio from its ends' unit
     /// directions instead (each vertex normalized once; per edge 2 dot products, 1 cross
     /// product, a table's cubic piece: `polygon::edge::unit_ratio_term`).
-    /// Measured on a quad (QEMU, median of the budget's 16 inputs): 495 Cortex-M4F
-    /// instructions in f32 (220 unlit, 495 wholly lit, 744 to 910 clipped; 545 before the
+    /// Measured on a quad (QEMU, median of the budget's 16 inputs): 497 Cortex-M4F
+    /// instructions in f32 (at d38eaa0 495: 220 unlit, 495 wholly lit, 744 to 910 clipped; 545 before the
     /// plane test's maximum went off the hot path, each squared length's range was tested
     /// once and `abs` became `VABS.F32`; with the walk alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
     /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 832

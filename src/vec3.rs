@@ -88,11 +88,11 @@ impl<T: Real> Vec3<T> {
     /// inverse square root; only a squared length that under- or overflows (below `2^-100` in
     /// f32, `2^-960` in f64, or infinite) takes a cold path that first scales the vector by a
     /// power of two (exact). Each component within 1.5 ULP of 1 (measured,
-    /// `tests/normalize.rs`). Cost (hot path): 5 operations for the squared length, 2
-    /// comparisons, 1 square root, 1 division, 3 products: 39 instructions a call on the
-    /// Cortex-M4F (`VSQRT.F32`; 83 for the former rescaled form), 1756 on the Cortex-M0 in
-    /// soft float (2499), QEMU exact counts of one non-inlined call (`Fast32`: 42 and 1761,
-    /// against 119 and 3509 for the rescaled form with its own `rsqrt`).
+    /// `tests/normalize.rs`). Cost (hot path): 5 operations for the squared length, 1
+    /// unsigned comparison of its bits, 1 square root, 1 division, 3 products: 39 instructions
+    /// a call on the Cortex-M4F with 2 float comparisons instead (`VSQRT.F32`; 83 rescaled),
+    /// 1756 on the Cortex-M0 in soft float (2499), QEMU exact counts of one non-inlined call
+    /// (`Fast32`: 42 and 1761, against 119 and 3509 for the rescaled form with its own `rsqrt`).
     ///
     /// `Fixed22`: the rescaled form: scaled by a power of two near the largest component first
     /// (exact shifts, since its squares would vanish or saturate otherwise), and a vector whose
