@@ -250,10 +250,8 @@ impl PixelFormat for Rgb565 {
     #[cfg(feature = "bytemuck")]
     #[inline]
     fn fill_pixels(pixels: &mut [Self], colour: Self) {
-        let (head, words, tail) = bytemuck::pod_align_to_mut::<Rgb565, u32>(pixels);
-        head.fill(colour);
-        tail.fill(colour);
-        fill_words(words, u32::from(colour.0) * 0x0001_0001);
+        // (The same size and alignment as `u16`: the cast cannot fail.)
+        fill_u16(bytemuck::cast_slice_mut(pixels), colour.0);
     }
     /// Red's bits of `r`, green's of `g`, blue's of `b`. An entry holds its 5-bit level at
     /// both ends (bits 0-4 and 11-15), so red is the entry shifted up by 11 (the 16-bit
