@@ -36,11 +36,12 @@
 use crate::unit::Direction;
 use crate::{Error, Real, UnitVec3, Vec3};
 
-/// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma`, `ss = sin sigma`.
+/// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma` (called only in the
+/// fillet, the one case that needs it: a sphere's cap computes it there), `ss = sin sigma`.
 /// (Cosines and sines, and below the arc tangents' angles: every factor at most pi, so the
 /// products without fixed point's saturation tests, the same bits.)
 #[inline]
-pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
+pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: impl FnOnce() -> T, ss: T) -> T {
     if c >= ss {
         // `c >= ss >= 0` (`sin sigma`, validated): the products are not negative (in fixed
         // point their floors neither), so only the upper end of `clamp01` can act (`c` is
@@ -54,7 +55,7 @@ pub(crate) fn cap_lambert_from_cos<T: Real>(c: T, cs: T, ss: T) -> T {
     } else if c <= -ss {
         T::ZERO
     } else {
-        cap_lambert_fillet(c, cs, ss)
+        cap_lambert_fillet(c, cs(), ss)
     }
 }
 
@@ -275,7 +276,9 @@ impl<T: Real> CapLight<T> {
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => cap_lambert_from_cos(n.dot_unit(self.axis), self.cos_sigma, self.sin_sigma),
+            Some(n) => {
+                cap_lambert_from_cos(n.dot_unit(self.axis), || self.cos_sigma, self.sin_sigma)
+            }
             None => T::ZERO,
         }
     }
@@ -340,18 +343,31 @@ pub struct SphereLight<T> {
     radius: T,
 }
 
-/// Per-sample cap of a sphere seen from `p`: `(axis, cos sigma, sin sigma)`.
+/// Per-sample cap of a sphere seen from `p`: its axis, `sin sigma` and `cos sigma` as
+/// `sqrt(a) b` ([`SphereCap::cs`]), whose square root only the fillet, Phong and SH9 take.
 pub(crate) struct SphereCap<T> {
     pub(crate) axis: UnitVec3<T>,
-    pub(crate) cs: T,
     pub(crate) ss: T,
+    /// `(a, b)` with `cos sigma = sqrt(a) b` (`Real::sphere_ratios`).
+    cos_parts: (T, T),
 }
 
 impl<T: Real> SphereCap<T> {
+    /// `cos sigma` (at most 1: only rounding could take it above). Cost: a square root and a
+    /// product, paid only by the callers that need it: a Lambert or Hermite sample outside
+    /// the fillet does not (QEMU budget medians, a build of the sphere cases alone:
+    /// `sphere_lambert` on the Cortex-M4F in f32 107 -> 97 instructions, 93 -> 74 with a
+    /// `UnitVec3`; on the Cortex-M0 in `Fixed22` 1 091 -> 902; the same values).
+    #[inline(always)]
+    pub(crate) fn cs(&self) -> T {
+        let (a, b) = self.cos_parts;
+        (a.sqrt() * b).min(T::ONE)
+    }
+
     /// `[sphere_lambert]` of this cap for the unit normal `n`.
     #[inline(always)]
     pub(crate) fn lambert(&self, n: UnitVec3<T>) -> T {
-        cap_lambert_from_cos(n.dot_unit(self.axis), self.cs, self.ss)
+        cap_lambert_from_cos(n.dot_unit(self.axis), || self.cs(), self.ss)
     }
 
     /// `[sphere_lambert_hermite]` of this cap for the unit normal `n`: outside the fillet
@@ -368,9 +384,10 @@ impl<T: Real> SphereCap<T> {
     /// [`HermiteFillet::eval_unit`]).
     #[inline(never)]
     fn hermite_in_fillet(&self, n: UnitVec3<T>) -> T {
-        let sigma = self.ss.atan2(self.cs);
+        let cs = self.cs();
+        let sigma = self.ss.atan2(cs);
         let (c, s) = crate::vec3::cos_sin_between(n, self.axis);
-        HermiteFillet::new(sigma, self.cs, self.ss).eval(c, s.atan2(c))
+        HermiteFillet::new(sigma, cs, self.ss).eval(c, s.atan2(c))
     }
 }
 
@@ -439,19 +456,20 @@ impl<T: Real> SphereLight<T> {
         let c = self.center - p;
         // The direction, d, r/d and cos sigma = sqrt((d - r)(d + r))/d (see `sphere_ratios`:
         // one division for the floats, none for fixed point).
-        let Some(([x, y, z], d, ss, cs)) = T::sphere_ratios([c.x, c.y, c.z], self.radius) else {
+        let Some(([x, y, z], d, ss, cos_parts)) = T::sphere_ratios([c.x, c.y, c.z], self.radius)
+        else {
             return Err(Self::no_cap_at(p));
         };
         let axis = Vec3::new(x, y, z);
         if !(d > self.radius) {
             return Err(Error::PointInsideSphere);
         }
-        // 0 < r < d: both ratios are positive, and only rounding can take them above 1.
-        let (ss, cs) = (ss.min(T::ONE), cs.min(T::ONE));
+        // 0 < r < d: both ratios are positive, and only rounding can take them above 1
+        // (`SphereCap::cs` clamps the other where it is taken).
         Ok(SphereCap {
             axis: UnitVec3::new_unchecked(axis),
-            cs,
-            ss,
+            ss: ss.min(T::ONE),
+            cos_parts,
         })
     }
 
@@ -478,9 +496,9 @@ impl<T: Real> SphereLight<T> {
 
     /// `[sphere_lambert]`: exact Lambertian irradiance at `p` with normal `n`, normalized.
     ///
-    /// Accuracy: measured, below. Cost: 2 normalizations, 1 division, 1 sqrt (fixed point: no
-    /// division, both ratios from the normalization's reciprocal square root); in the
-    /// fillet (out of line) also 1 sqrt and 2 atan2: median 99 instructions a call on the
+    /// Accuracy: measured, below. Cost: 2 normalizations, 1 division (fixed point: no
+    /// division, `sin sigma` from the normalization's reciprocal square root); in the
+    /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 99 instructions a call on the
     /// Cortex-M4F in f32, 93 with a `UnitVec3`; 1080 and 795 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact). Fallback: 0 for a point inside or on the sphere, or a zero or
     /// non-finite input.

@@ -216,7 +216,23 @@ impl<T: Real> SphereCap<T> {
     #[inline(always)]
     pub(crate) fn phong(&self, lobe: &PhongLobe<T>, r: UnitVec3<T>) -> T {
         let (c, s) = cos_sin_between(r, self.axis);
-        phong_cap_from_angle(lobe, c, s, self.cs, self.ss)
+        phong_cap_from_angle(lobe, c, s, self.cs(), self.ss)
+    }
+
+    /// `([sphere_lambert], [phong_sphere])` of this cap: the two terms of
+    /// [`SphereLight`]'s `Illuminant::diffuse_and_phong`, `cos sigma` taken once for both
+    /// (the same bits as each alone).
+    #[inline(always)]
+    pub(crate) fn lambert_and_phong(
+        &self,
+        lobe: &PhongLobe<T>,
+        n: UnitVec3<T>,
+        r: UnitVec3<T>,
+    ) -> (T, T) {
+        let cs = self.cs();
+        let diffuse = crate::cap::cap_lambert_from_cos(n.dot_unit(self.axis), || cs, self.ss);
+        let (c, s) = cos_sin_between(r, self.axis);
+        (diffuse, phong_cap_from_angle(lobe, c, s, cs, self.ss))
     }
 }
 

@@ -38,6 +38,10 @@ pub use fixed22::Fixed22;
 pub(crate) mod sealed {
     use core::ops::{Add, Mul, Sub};
 
+    /// [`Sealed::sphere_ratios`]' answer: `(v / |v|, |v|, r / |v|, (a, b))`, `cos sigma =
+    /// sqrt(a) b`.
+    pub type SphereRatios<T> = ([T; 3], T, T, (T, T));
+
     pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
         /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are below 16 in
         /// magnitude and whose products and their sum are below 512 (unit vectors and the
@@ -90,22 +94,23 @@ pub(crate) mod sealed {
             a * c
         }
         /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
-        /// `Some((v / |v|, |v|, r / |v|, sqrt(|v|^2 - r^2) / |v|))` for a finite nonzero `v`
-        /// (the two ratios unspecified unless `|v| > r`), `None` otherwise. This
-        /// default (the floats) is [`Real::normalize3`], one division `1 / |v|` and the
-        /// products `r (1/|v|)` and `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|`
-        /// is close to 1 and `1 - (r/|v|)^2` would keep only its rounding), so its bits are
-        /// theirs; [`Fixed22`](super::Fixed22) computes both ratios in its normalization's
-        /// rescaled space from the reciprocal square root it computes anyway (no division).
+        /// `Some((v / |v|, |v|, r / |v|, (a, b)))` for a finite nonzero `v`, the second ratio
+        /// `sqrt(|v|^2 - r^2) / |v|` being `sqrt(a) b` (the ratios unspecified unless `|v| >
+        /// r`), `None` otherwise. The square root is left to the caller, which needs it only
+        /// where the cap straddles the horizon or for Phong. This default (the floats) is
+        /// [`Real::normalize3`], one division `1 / |v|` and the products `r (1/|v|)` and
+        /// `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|` is close to 1 and `1 -
+        /// (r/|v|)^2` would keep only its rounding), so its bits are theirs;
+        /// [`Fixed22`](super::Fixed22) computes both ratios in its normalization's rescaled
+        /// space from the reciprocal square root it computes anyway (no division).
         #[inline(always)]
-        fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)>
+        fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>>
         where
             Self: super::Real,
         {
             let (u, d) = <Self as super::Real>::normalize3(v)?;
             let inv_d = <Self as super::Real>::ONE / d;
-            let cs = <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d;
-            Some((u, d, r * inv_d, cs))
+            Some((u, d, r * inv_d, ((d - r) * (d + r), inv_d)))
         }
         /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
         /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within

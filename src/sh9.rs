@@ -221,7 +221,7 @@ impl<T: Real> Sh9<T> {
     pub fn sphere(center: Vec3<T>, radius: T, p: Vec3<T>, colour: Rgb<T>) -> Result<Self, Error> {
         let s = crate::cap::SphereLight::new(center, radius)?;
         let cap = s.cap_at(p)?;
-        Self::disc_cos_sin(cap.axis.into_inner(), cap.cs, cap.ss, colour)
+        Self::disc_cos_sin(cap.axis.into_inner(), cap.cs(), cap.ss, colour)
     }
 
     /// A constant hemisphere (sky) of radiance `colour` around `up`.

@@ -57,7 +57,10 @@ impl<T: Real> Illuminant<T> for SphereLight<T> {
             r: UnitVec3<T>,
         ) -> (Rgb<T>, Rgb<T>) {
             match self.cap_at(p) {
-                Ok(cap) => (grey(cap.lambert(n)), grey(cap.phong(lobe, r))),
+                Ok(cap) => {
+                    let (diffuse, specular) = cap.lambert_and_phong(lobe, n, r);
+                    (grey(diffuse), grey(specular))
+                }
                 Err(_) => (black(), black()),
             }
         }

@@ -7,6 +7,7 @@
 use super::kernels::*;
 use super::normalize::*;
 use super::{Fixed22, FRAC};
+use crate::real::sealed::SphereRatios;
 use crate::Real;
 
 impl crate::real::sealed::Sealed for Fixed22 {
@@ -91,7 +92,7 @@ impl crate::real::sealed::Sealed for Fixed22 {
     /// keeps the 22 fractional bits for short vectors (whose `|v|` would lose the shift).
     /// `r 2^k < |V|` (at most 3.5) once `|v| > r`: no overflow.
     #[inline(always)]
-    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<([Self; 3], Self, Self, Self)> {
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
         let top = magnitude_top(v, Self::TINY)?;
         let ([x, y, z], k) = rescale_by_top_exp(v, top);
         let s2 = unit_scale(x, y, z);
@@ -107,13 +108,13 @@ impl crate::real::sealed::Sealed for Fixed22 {
             ((len as u32) << (-k)).min(i32::MAX as u32) as i32
         });
         if d <= r {
-            return Some((u, d, Self::ZERO, Self::ZERO));
+            return Some((u, d, Self::ZERO, (Self::ZERO, Self::ZERO)));
         }
         // 0 <= r < d: `r 2^k` below `|V|`.
         let rb = r.to_bits();
         let rs = Fixed22::from_bits(if k >= 0 { rb << k } else { rb >> (-k) });
-        let cs = (s2 - rs * rs).sqrt() * inv;
-        Some((u, d, rs * inv, cs))
+        // cos sigma = sqrt(S - (r 2^k)^2) / |V|: its square root left to the caller.
+        Some((u, d, rs * inv, (s2 - rs * rs, inv)))
     }
     /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors below 16, no
     /// saturation test), the sum (below 512 by the precondition) by wrapping additions: the
