@@ -75,10 +75,10 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 99 | 229 | 1080 | 1287 | 872 | 1016 |
-//! | `sphere_lambert_hermite` | 110 | 241 | 1096 | 1302 | 892 | 1036 |
+//! | `sphere_lambert` | 89 | 219 | 889 | 1086 | 746 | 871 |
+//! | `sphere_lambert_hermite` | 98 | 229 | 895 | 1101 | 741 | 885 |
 //! | `polygon_lambert` | 497 | 1089 | 3832 | 4442 | 3008 | 3413 |
-//! | `phong_sphere` | 486 | 608 | 5074 | 5181 | 4036 | 4170 |
+//! | `phong_sphere` | 484 | 607 | 5071 | 5161 | 4049 | 4179 |
 //! | `phong_polygon` | 1856 | 2584 | 11861 | 12683 | 7874 | 8356 |
 //! <!-- END budget-world -->
 //!
