@@ -344,12 +344,12 @@ pub struct SphereLight<T> {
 }
 
 /// Per-sample cap of a sphere seen from `p`: its axis, `sin sigma` and `cos sigma` as
-/// `sqrt(a) b` ([`SphereCap::cs`]), whose square root only the fillet, Phong and SH9 take.
+/// parts ([`SphereCap::cs`]), whose square root only the fillet, Phong and SH9 take.
 pub(crate) struct SphereCap<T> {
     pub(crate) axis: UnitVec3<T>,
     pub(crate) ss: T,
-    /// `(a, b)` with `cos sigma = sqrt(a) b` (`Real::sphere_ratios`).
-    cos_parts: (T, T),
+    /// What `cos sigma` is computed from (`Real`'s sealed `sphere_ratios`, `sphere_cos`).
+    cos_parts: [T; 3],
 }
 
 impl<T: Real> SphereCap<T> {
@@ -360,8 +360,7 @@ impl<T: Real> SphereCap<T> {
     /// in `Fixed22` 1 080 -> 889, 795 -> 603; the Hermite sphere 110 -> 98 and 1 096 -> 895).
     #[inline(always)]
     pub(crate) fn cs(&self) -> T {
-        let (a, b) = self.cos_parts;
-        (a.sqrt() * b).min(T::ONE)
+        T::sphere_cos(self.cos_parts).min(T::ONE)
     }
 
     /// `[sphere_lambert]` of this cap for the unit normal `n`.

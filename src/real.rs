@@ -38,9 +38,9 @@ pub use fixed22::Fixed22;
 pub(crate) mod sealed {
     use core::ops::{Add, Mul, Sub};
 
-    /// [`Sealed::sphere_ratios`]' answer: `(v / |v|, |v|, r / |v|, (a, b))`, `cos sigma =
-    /// sqrt(a) b`.
-    pub type SphereRatios<T> = ([T; 3], T, T, (T, T));
+    /// [`Sealed::sphere_ratios`]' answer: `(v / |v|, |v|, r / |v|, parts)`, `cos sigma =
+    /// Sealed::sphere_cos(parts)`.
+    pub type SphereRatios<T> = ([T; 3], T, T, [T; 3]);
 
     pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
         /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are below 16 in
@@ -94,11 +94,12 @@ pub(crate) mod sealed {
             a * c
         }
         /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
-        /// `Some((v / |v|, |v|, r / |v|, (a, b)))` for a finite nonzero `v`, the second ratio
-        /// `sqrt(|v|^2 - r^2) / |v|` being `sqrt(a) b` (the ratios unspecified unless `|v| >
-        /// r`), `None` otherwise. The square root is left to the caller, which needs it only
-        /// where the cap straddles the horizon or for Phong. This default (the floats) is
-        /// [`Real::normalize3`], one division `1 / |v|` and the products `r (1/|v|)` and
+        /// `Some((v / |v|, |v|, r / |v|, parts))` for a finite nonzero `v`, the second ratio
+        /// `sqrt(|v|^2 - r^2) / |v|` being [`Sealed::sphere_cos`]`(parts)` (the ratios
+        /// unspecified unless `|v| > r`), `None` otherwise. That ratio is left to the caller,
+        /// which needs it only where the cap straddles the horizon or for Phong. This default
+        /// (the floats) is [`Real::normalize3`], `1 / |v|` (for `f32` and `f64` the
+        /// normalization's own: [`Sealed::normalize3_inv`]) and the products `r (1/|v|)` and
         /// `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|` is close to 1 and `1 -
         /// (r/|v|)^2` would keep only its rounding), so its bits are theirs;
         /// [`Fixed22`](super::Fixed22) computes both ratios in its normalization's rescaled
@@ -108,9 +109,29 @@ pub(crate) mod sealed {
         where
             Self: super::Real,
         {
+            let (u, d, inv_d) = Self::normalize3_inv(v)?;
+            Some((u, d, r * inv_d, [d, r, inv_d]))
+        }
+        /// `cos sigma` from [`Sealed::sphere_ratios`]' parts: the floats' `sqrt((d - r)(d +
+        /// r)) (1/d)` from `[d, r, 1/d]`.
+        #[inline(always)]
+        fn sphere_cos(parts: [Self; 3]) -> Self
+        where
+            Self: super::Real,
+        {
+            let [d, r, inv_d] = parts;
+            <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d
+        }
+        /// `(v / |v|, |v|, 1 / |v|)`, the first two [`Real::normalize3`]'s bits and the third
+        /// `1 / |v|`'s. This default divides; `f32` and `f64` take their normalization's own
+        /// reciprocal on its hot path (the same bits, one division fewer).
+        #[inline(always)]
+        fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)>
+        where
+            Self: super::Real,
+        {
             let (u, d) = <Self as super::Real>::normalize3(v)?;
-            let inv_d = <Self as super::Real>::ONE / d;
-            Some((u, d, r * inv_d, ((d - r) * (d + r), inv_d)))
+            Some((u, d, <Self as super::Real>::ONE / d))
         }
         /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
         /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
@@ -177,6 +198,10 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for f32 {
+        #[inline(always)]
+        fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
+            <f32 as super::float::LeanFloat>::normalize3_inv(v)
+        }
         /// `x as f32` (one rounding to nearest), then an exact product by a power of two; the
         /// conversion through [`i64_to_f32`], the same bits as `as` from the FPU's 32-bit
         /// conversion.
@@ -191,6 +216,10 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for f64 {
+        #[inline(always)]
+        fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
+            <f64 as super::float::LeanFloat>::normalize3_inv(v)
+        }
         #[inline(always)]
         fn from_q60(x: i64) -> Self {
             x as f64 * (1.0 / (1u64 << 60) as f64)

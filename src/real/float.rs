@@ -67,13 +67,34 @@ pub(crate) fn normalize3_lean<T: Real>(
     in_range: impl Fn(T) -> bool,
     root: impl Fn(T) -> (T, T),
 ) -> Option<([T; 3], T)> {
+    normalize3_lean_inv(v, k, in_range, root).map(|(u, len, _)| (u, len))
+}
+
+/// [`normalize3_lean`] with `1/|v|` beside (the hot path's own reciprocal, `1/len` computed
+/// once; the cold path's `1 / len`): the same unit vector and length, for a caller that needs
+/// the reciprocal too (`Sealed::sphere_ratios`: one division fewer).
+#[inline(always)]
+pub(crate) fn normalize3_lean_inv<T: Real>(
+    v: [T; 3],
+    k: LeanBounds<T>,
+    in_range: impl Fn(T) -> bool,
+    root: impl Fn(T) -> (T, T),
+) -> Option<([T; 3], T, T)> {
     let s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     if in_range(s2) {
         let (len, inv) = root(s2);
-        Some(([v[0] * inv, v[1] * inv, v[2] * inv], len))
+        Some(([v[0] * inv, v[1] * inv, v[2] * inv], len, inv))
     } else {
-        normalize3_cold(v[0], v[1], v[2], k, root)
+        let (u, len) = normalize3_cold(v[0], v[1], v[2], k, root)?;
+        Some((u, len, T::ONE / len))
     }
+}
+
+/// The lean normalization with its reciprocal ([`normalize3_lean_inv`]) of `f32` and `f64`,
+/// for their `Sealed::sphere_ratios`.
+pub(crate) trait LeanFloat: Sized {
+    /// `(v / |v|, |v|, 1/|v|)`, the first two [`Real::normalize3`]'s bits.
+    fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)>;
 }
 
 /// The cold path of [`normalize3_lean`]: `None` for a zero or non-finite vector, else the
@@ -233,6 +254,21 @@ macro_rules! impl_real_float {
                 Self::normalize3(v).map(|(u, _)| u)
             }
         }
+        impl LeanFloat for $t {
+            #[inline(always)]
+            fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
+                let (lo, hi) = ($lean.lo.to_bits(), $lean.hi.to_bits());
+                normalize3_lean_inv(
+                    v,
+                    $lean,
+                    |s2: Self| s2.to_bits().wrapping_sub(lo) <= hi - lo,
+                    |s2| {
+                        let r = $sqrt(s2);
+                        (r, 1.0 / r)
+                    },
+                )
+            }
+        }
     };
 }
 
@@ -262,3 +298,49 @@ impl_real_float!(
     1.0e-18,
     LEAN_F32
 );
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::LeanFloat;
+    use crate::Real;
+
+    /// `normalize3_inv` is `normalize3`'s unit vector and length, bit for bit, and `1 / len`,
+    /// on the hot path and on both sides of the cold one (squares that under- and overflow),
+    /// for zero, infinite and NaN vectors alike (`None`).
+    #[test]
+    fn normalize3_inv_is_normalize3_and_the_reciprocal() {
+        fn check<T: Real + LeanFloat + core::fmt::Debug>(vs: &[[T; 3]]) {
+            for &v in vs {
+                let a = <T as LeanFloat>::normalize3_inv(v);
+                let b = T::normalize3(v);
+                match (a, b) {
+                    (Some((u, len, inv)), Some((w, l))) => {
+                        assert_eq!((u, len), (w, l), "{v:?}");
+                        assert_eq!(inv, T::ONE / len, "{v:?}");
+                    }
+                    (None, None) => {}
+                    _ => panic!("{v:?}: {a:?} against {b:?}"),
+                }
+            }
+        }
+        let mut seed = 0x9E37_79B9u32;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            f64::from(seed) / f64::from(u32::MAX) * 2.0 - 1.0
+        };
+        let mut v64 = std::vec::Vec::new();
+        for scale in [1.0, 1e-30, 1e-170, 1e30, 1e170, 1e300, 0.0] {
+            for _ in 0..200 {
+                v64.push([next() * scale, next() * scale, next() * scale]);
+            }
+        }
+        v64.push([f64::INFINITY, 0.0, 1.0]);
+        v64.push([f64::NAN, 1.0, 1.0]);
+        let v32: std::vec::Vec<[f32; 3]> = v64.iter().map(|v| v.map(|x| x as f32)).collect();
+        check(&v64);
+        check(&v32);
+    }
+}

@@ -108,13 +108,19 @@ impl crate::real::sealed::Sealed for Fixed22 {
             ((len as u32) << (-k)).min(i32::MAX as u32) as i32
         });
         if d <= r {
-            return Some((u, d, Self::ZERO, (Self::ZERO, Self::ZERO)));
+            return Some((u, d, Self::ZERO, [Self::ZERO; 3]));
         }
         // 0 <= r < d: `r 2^k` below `|V|`.
         let rb = r.to_bits();
         let rs = Fixed22::from_bits(if k >= 0 { rb << k } else { rb >> (-k) });
-        // cos sigma = sqrt(S - (r 2^k)^2) / |V|: its square root left to the caller.
-        Some((u, d, rs * inv, (s2 - rs * rs, inv)))
+        // cos sigma = sqrt(S - (r 2^k)^2) / |V|: left to the caller (`sphere_cos`).
+        Some((u, d, rs * inv, [s2, rs, inv]))
+    }
+    /// `sqrt(S - (r 2^k)^2) / |V|` from `sphere_ratios`' parts `[S, r 2^k, 1/|V|]`.
+    #[inline(always)]
+    fn sphere_cos(parts: [Self; 3]) -> Self {
+        let [s2, rs, inv] = parts;
+        (s2 - rs * rs).sqrt() * inv
     }
     /// Each product by `mul_bits_small` (exact `floor(a b / 2^22)` for factors below 16, no
     /// saturation test), the sum (below 512 by the precondition) by wrapping additions: the
