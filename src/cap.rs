@@ -355,9 +355,9 @@ pub(crate) struct SphereCap<T> {
 impl<T: Real> SphereCap<T> {
     /// `cos sigma` (at most 1: only rounding could take it above). Cost: a square root and a
     /// product, paid only by the callers that need it: a Lambert or Hermite sample outside
-    /// the fillet does not (QEMU budget medians, the same values: `sphere_lambert` on the
-    /// Cortex-M4F in f32 99 -> 89 instructions, 93 -> 74 with a `UnitVec3`; on the Cortex-M0
-    /// in `Fixed22` 1 080 -> 889, 795 -> 603; the Hermite sphere 110 -> 98 and 1 096 -> 895).
+    /// the fillet does not (QEMU budget medians, the same values, with `Sealed::sphere_cos`'s
+    /// parts: `sphere_lambert` on the Cortex-M4F in f32 99 -> 81, 93 -> 73 with a `UnitVec3`;
+    /// on the Cortex-M0 in `Fixed22` 1 080 -> 857, 795 -> 571; Hermite 110 -> 94, 1 096 -> 863).
     #[inline(always)]
     pub(crate) fn cs(&self) -> T {
         T::sphere_cos(self.cos_parts).min(T::ONE)
@@ -497,8 +497,8 @@ impl<T: Real> SphereLight<T> {
     ///
     /// Accuracy: measured, below. Cost: 2 normalizations, 1 division (fixed point: no
     /// division, `sin sigma` from the normalization's reciprocal square root); in the
-    /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 89 instructions a call on the
-    /// Cortex-M4F in f32, 74 with a `UnitVec3`; 889 and 603 on the Cortex-M0 in `Fixed22`
+    /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 81 instructions a call on the
+    /// Cortex-M4F in f32, 73 with a `UnitVec3`; 857 and 571 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact). Fallback: 0 for a point inside or on the sphere, or a zero or
     /// non-finite input.
     ///
