@@ -47,11 +47,13 @@ const LEAN_F64: LeanBounds<f64> = LeanBounds {
     down: f64::from_bits((1023 - 600) << 52),
 };
 
-/// The lean normalization of the float types (see [`Real::normalize3`]): `(v / |v|, |v|)` from
-/// the squared length `s2` directly when it lies in `[lo, hi]`; otherwise (a cold path, taken
-/// only by vectors whose squared length under- or overflows, and by zero, infinite or NaN ones)
-/// `v` is scaled by the power of two `up` or `down` first, exactly, and the length scaled back.
-/// `root(s2)` returns `(sqrt(s2), 1/sqrt(s2))` for a normal positive `s2`.
+/// The lean normalization of the float types (see [`Real::normalize3`]): `(v / |v|, |v|,
+/// 1/|v|)` from the squared length `s2` directly when it lies in `[lo, hi]`; otherwise (a cold
+/// path, taken only by vectors whose squared length under- or overflows, and by zero, infinite
+/// or NaN ones) `v` is scaled by the power of two `up` or `down` first, exactly, and the length
+/// scaled back. `root(s2)` returns `(sqrt(s2), 1/sqrt(s2))` for a normal positive `s2`; the
+/// reciprocal is the hot path's own (the cold path's `1 / len`), for a caller that needs it
+/// too (`Sealed::sphere_ratios`: one division fewer); `Real::normalize3` drops it.
 ///
 /// Accuracy: each component within a few ULPs of the exact quotient (3 roundings in the
 /// squared length, 1 in the root, 1 in the reciprocal, 1 in the product); the length within
@@ -62,19 +64,6 @@ const LEAN_F64: LeanBounds<f64> = LeanBounds {
 /// the Cortex-M4F: one `VSQRT.F32` and one `VDIV.F32`).
 #[inline(always)]
 pub(crate) fn normalize3_lean<T: Real>(
-    v: [T; 3],
-    k: LeanBounds<T>,
-    in_range: impl Fn(T) -> bool,
-    root: impl Fn(T) -> (T, T),
-) -> Option<([T; 3], T)> {
-    normalize3_lean_inv(v, k, in_range, root).map(|(u, len, _)| (u, len))
-}
-
-/// [`normalize3_lean`] with `1/|v|` beside (the hot path's own reciprocal, `1/len` computed
-/// once; the cold path's `1 / len`): the same unit vector and length, for a caller that needs
-/// the reciprocal too (`Sealed::sphere_ratios`: one division fewer).
-#[inline(always)]
-pub(crate) fn normalize3_lean_inv<T: Real>(
     v: [T; 3],
     k: LeanBounds<T>,
     in_range: impl Fn(T) -> bool,
@@ -90,7 +79,7 @@ pub(crate) fn normalize3_lean_inv<T: Real>(
     }
 }
 
-/// The lean normalization with its reciprocal ([`normalize3_lean_inv`]) of `f32` and `f64`,
+/// The lean normalization with its reciprocal ([`normalize3_lean`]) of `f32` and `f64`,
 /// for their `Sealed::sphere_ratios`.
 pub(crate) trait LeanFloat: Sized {
     /// `(v / |v|, |v|, 1/|v|)`, the first two [`Real::normalize3`]'s bits.
@@ -230,23 +219,12 @@ macro_rules! impl_real_float {
             fn unit_to_u32(self, max: u32) -> u32 {
                 ((self.clamp01() * max as $t + 0.5) as u32).min(max)
             }
-            /// The lean form (`normalize3_lean`): squared length, one square root, one
-            /// division, three products; a power-of-two rescaling only on the cold path.
+            /// The lean form (`normalize3_lean`, its reciprocal dropped): squared length, one
+            /// square root, one division, three products; a power-of-two rescaling only on the
+            /// cold path.
             #[inline(always)]
             fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
-                // `lo <= s2 <= hi` as one unsigned comparison of the bits (the same
-                // answer for every `s2`: positive floats order as their bits, and a
-                // negative or NaN `s2` falls outside, as it does the float comparisons).
-                let (lo, hi) = ($lean.lo.to_bits(), $lean.hi.to_bits());
-                normalize3_lean(
-                    v,
-                    $lean,
-                    |s2: Self| s2.to_bits().wrapping_sub(lo) <= hi - lo,
-                    |s2| {
-                        let r = $sqrt(s2);
-                        (r, 1.0 / r)
-                    },
-                )
+                <Self as LeanFloat>::normalize3_inv(v).map(|(u, len, _)| (u, len))
             }
             /// [`Real::normalize3`] without the length (the same operations).
             #[inline(always)]
@@ -257,8 +235,11 @@ macro_rules! impl_real_float {
         impl LeanFloat for $t {
             #[inline(always)]
             fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
+                // `lo <= s2 <= hi` as one unsigned comparison of the bits (the same
+                // answer for every `s2`: positive floats order as their bits, and a
+                // negative or NaN `s2` falls outside, as it does the float comparisons).
                 let (lo, hi) = ($lean.lo.to_bits(), $lean.hi.to_bits());
-                normalize3_lean_inv(
+                normalize3_lean(
                     v,
                     $lean,
                     |s2: Self| s2.to_bits().wrapping_sub(lo) <= hi - lo,
