@@ -38,8 +38,8 @@ pub use fixed22::Fixed22;
 pub(crate) mod sealed {
     use core::ops::{Add, Mul, Sub};
 
-    /// [`Sealed::sphere_ratios`]' answer: `(v / |v|, |v|, r / |v|, parts)`, `cos sigma =
-    /// Sealed::sphere_cos(parts)`.
+    /// [`Sealed::sphere_ratios`]' answer: `(v / |v|, |v|, min(r / |v|, 1), parts)`, `cos sigma
+    /// = Sealed::sphere_cos(parts)`.
     pub type SphereRatios<T> = ([T; 3], T, T, [T; 3]);
 
     pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
@@ -94,23 +94,27 @@ pub(crate) mod sealed {
             a * c
         }
         /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
-        /// `Some((v / |v|, |v|, r / |v|, parts))` for a finite nonzero `v`, the second ratio
-        /// `sqrt(|v|^2 - r^2) / |v|` being [`Sealed::sphere_cos`]`(parts)` (the ratios
-        /// unspecified unless `|v| > r`), `None` otherwise. That ratio is left to the caller,
-        /// which needs it only where the cap straddles the horizon or for Phong. This default
-        /// (the floats) is [`Real::normalize3`], `1 / |v|` (for `f32` and `f64` the
-        /// normalization's own: [`Sealed::normalize3_inv`]) and the products `r (1/|v|)` and
-        /// `sqrt((|v| - r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|` is close to 1 and `1 -
-        /// (r/|v|)^2` would keep only its rounding), so its bits are theirs;
-        /// [`Fixed22`](super::Fixed22) computes both ratios in its normalization's rescaled
-        /// space from the reciprocal square root it computes anyway (no division).
+        /// `Some((v / |v|, |v|, min(r / |v|, 1), parts))` for a finite nonzero `v`, the second
+        /// ratio `sqrt(|v|^2 - r^2) / |v|` being [`Sealed::sphere_cos`]`(parts)` (the ratios
+        /// unspecified unless `|v| > r`, where the first lies in `[0, 1]`), `None` otherwise.
+        /// That second ratio is left to the caller, which needs it only where the cap straddles
+        /// the horizon or for Phong. This default is [`Real::normalize3`], `1 / |v|` and the
+        /// products `r (1/|v|)` (clamped to 1: rounding may take it above) and `sqrt((|v| -
+        /// r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|` is close to 1 and `1 - (r/|v|)^2`
+        /// would keep only its rounding). `f32` and `f64` give the same bits with one division
+        /// fewer (the normalization's own reciprocal) and the clamp on their normalization's
+        /// cold path only (`float::LeanFloat::sphere_ratios`, which proves it needless on the
+        /// hot one); [`Fixed22`](super::Fixed22) computes both ratios in its normalization's
+        /// rescaled space from the reciprocal square root it computes anyway (no division).
         #[inline(always)]
         fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>>
         where
             Self: super::Real,
         {
-            let (u, d, inv_d) = Self::normalize3_inv(v)?;
-            Some((u, d, r * inv_d, [d, r, inv_d]))
+            let (u, d) = <Self as super::Real>::normalize3(v)?;
+            let inv_d = <Self as super::Real>::ONE / d;
+            let ss = <Self as super::Real>::min(r * inv_d, <Self as super::Real>::ONE);
+            Some((u, d, ss, [d, r, inv_d]))
         }
         /// `cos sigma` from [`Sealed::sphere_ratios`]' parts: the floats' `sqrt((d - r)(d +
         /// r)) (1/d)` from `[d, r, 1/d]`.
@@ -121,17 +125,6 @@ pub(crate) mod sealed {
         {
             let [d, r, inv_d] = parts;
             <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d
-        }
-        /// `(v / |v|, |v|, 1 / |v|)`, the first two [`Real::normalize3`]'s bits and the third
-        /// `1 / |v|`'s. This default divides; `f32` and `f64` take their normalization's own
-        /// reciprocal on its hot path (the same bits, one division fewer).
-        #[inline(always)]
-        fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)>
-        where
-            Self: super::Real,
-        {
-            let (u, d) = <Self as super::Real>::normalize3(v)?;
-            Some((u, d, <Self as super::Real>::ONE / d))
         }
         /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
         /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
@@ -199,8 +192,8 @@ pub(crate) mod sealed {
     }
     impl Sealed for f32 {
         #[inline(always)]
-        fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
-            <f32 as super::float::LeanFloat>::normalize3_inv(v)
+        fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
+            <f32 as super::float::LeanFloat>::sphere_ratios(v, r)
         }
         /// `x as f32` (one rounding to nearest), then an exact product by a power of two; the
         /// conversion through [`i64_to_f32`], the same bits as `as` from the FPU's 32-bit
@@ -217,8 +210,8 @@ pub(crate) mod sealed {
     }
     impl Sealed for f64 {
         #[inline(always)]
-        fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
-            <f64 as super::float::LeanFloat>::normalize3_inv(v)
+        fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
+            <f64 as super::float::LeanFloat>::sphere_ratios(v, r)
         }
         #[inline(always)]
         fn from_q60(x: i64) -> Self {

@@ -51,62 +51,102 @@ const LEAN_F64: LeanBounds<f64> = LeanBounds {
 /// 1/|v|)` from the squared length `s2` directly when it lies in `[lo, hi]`; otherwise (a cold
 /// path, taken only by vectors whose squared length under- or overflows, and by zero, infinite
 /// or NaN ones) `v` is scaled by the power of two `up` or `down` first, exactly, and the length
-/// scaled back. `root(s2)` returns `(sqrt(s2), 1/sqrt(s2))` for a normal positive `s2`; the
-/// reciprocal is the hot path's own (the cold path's `1 / len`), for a caller that needs it
-/// too (`Sealed::sphere_ratios`: one division fewer); `Real::normalize3` drops it.
+/// scaled back. [`LeanRoot::root`] returns `(sqrt(s2), 1/sqrt(s2))` for a normal positive
+/// `s2`; the reciprocal is the hot path's own (the cold path's `1 / len`), for a caller that needs it
+/// too (`Sealed::sphere_ratios`: one division fewer); `Real::normalize3` drops it. `finish`
+/// receives the three and whether they came from the hot path, where `len` lies in `[2^-50,
+/// 2^64]` (f32; f64 `[2^-480, 2^512]`), so that `1/len` is normal and rounded once: a caller
+/// can rely on that there and pay for its cold-path case only on the cold path (the sphere's
+/// `r/|v| <= 1`, `LeanFloat::sphere_ratios`). The flag is a constant at each of its two call
+/// sites, so the test on it folds away.
 ///
 /// Accuracy: each component within a few ULPs of the exact quotient (3 roundings in the
 /// squared length, 1 in the root, 1 in the reciprocal, 1 in the product); the length within
-/// 2 ULPs. Cost on the hot path: 3 products and 2 additions, `in_range` (for `f32` and `f64` one
+/// 2 ULPs. Cost on the hot path: 3 products and 2 additions, [`LeanRoot::in_range`] (for `f32` and `f64` one
 /// unsigned comparison of the bits, which the square root's `VMOV` then reuses: on the
 /// Cortex-M4F `hemi_const` 49 -> 47 instructions, `sphere_lambert` with a `UnitVec3` 97 -> 93,
 /// and on the soft-float Cortex-M0 two library comparisons fewer), `root`, 3 products (f32 on
-/// the Cortex-M4F: one `VSQRT.F32` and one `VDIV.F32`).
+/// the Cortex-M4F: one `VSQRT.F32` and one `VDIV.F32`), and no stack frame for the cold path's
+/// call (see [`ColdUnit`]).
 #[inline(always)]
-pub(crate) fn normalize3_lean<T: Real>(
+pub(crate) fn normalize3_lean<T: LeanRoot, R>(
     v: [T; 3],
-    k: LeanBounds<T>,
-    in_range: impl Fn(T) -> bool,
-    root: impl Fn(T) -> (T, T),
-) -> Option<([T; 3], T, T)> {
+    finish: impl FnOnce([T; 3], T, T, bool) -> R,
+) -> Option<R> {
     let s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if in_range(s2) {
-        let (len, inv) = root(s2);
-        Some(([v[0] * inv, v[1] * inv, v[2] * inv], len, inv))
+    if T::in_range(s2) {
+        let (len, inv) = T::root(s2);
+        Some(finish([v[0] * inv, v[1] * inv, v[2] * inv], len, inv, true))
     } else {
-        let (u, len) = normalize3_cold(v[0], v[1], v[2], k, root)?;
-        Some((u, len, T::ONE / len))
+        let ColdUnit { u, len } = normalize3_cold::<T>(v[0], v[1], v[2]);
+        if len > T::ZERO {
+            Some(finish(u, len, T::ONE / len, false))
+        } else {
+            None
+        }
     }
 }
 
-/// The lean normalization with its reciprocal ([`normalize3_lean`]) of `f32` and `f64`,
-/// for their `Sealed::sphere_ratios`.
+/// The lean normalization with its reciprocal ([`normalize3_lean`]) of `f32` and `f64`, and
+/// their `Sealed::sphere_ratios` built on it.
 pub(crate) trait LeanFloat: Sized {
     /// `(v / |v|, |v|, 1/|v|)`, the first two [`Real::normalize3`]'s bits.
     fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)>;
+    /// `Sealed::sphere_ratios` (see there), with `r/|v|` clamped to 1 on the cold path only.
+    /// On the hot path `r < |v|` already keeps `r (1/|v|)` at most 1 without the clamp: `1/|v|`
+    /// is normal and rounded to nearest once, so `r fl(1/|v|) <= (r/|v|)(1 + u) < 1 + u` (`u`
+    /// the unit roundoff, `2^-24` for f32), and every product below `1 + u`, the midpoint
+    /// between 1 and the next float, rounds to at most 1. The cold path's `1/|v|` may be
+    /// subnormal (`|v|` above `2^126` in f32), with a larger relative error: there the clamp
+    /// stays. The same bits as clamping always (Cortex-M4F f32 `sphere_lambert` 81 -> 76
+    /// instructions: a comparison, a status transfer and a conditional move fewer).
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<super::sealed::SphereRatios<Self>>;
 }
 
-/// The cold path of [`normalize3_lean`]: `None` for a zero or non-finite vector, else the
-/// vector scaled by a power of two into the hot range.
+/// One float type's parts of [`normalize3_lean`]: its bounds and square root.
+pub(crate) trait LeanRoot: Real {
+    /// The squared lengths taken as they are, and the cold path's scales.
+    const BOUNDS: LeanBounds<Self>;
+    /// `lo <= s2 <= hi` (`BOUNDS`).
+    fn in_range(s2: Self) -> bool;
+    /// `(sqrt(s2), 1/sqrt(s2))` for a normal positive `s2`.
+    fn root(s2: Self) -> (Self, Self);
+}
+
+/// The cold path's answer, `(v / |v|, |v|)`, with a zero length for no direction. `repr(C)`
+/// and four floats: a homogeneous aggregate, which the hard-float C ABI returns in registers
+/// (`s0` to `s3` on the Cortex-M4F), where Rust's ABI would return it, or an `Option` of it,
+/// in memory and give every caller of the lean normalization a stack frame for it (Cortex-M4F
+/// f32 medians, QEMU: `hemi_const` 46 -> 44 instructions, `sky_ground` 61 -> 59, `cap_lambert`
+/// 46 -> 44, `phong_polygon` 1844 -> 1839; `line_lambert` and `phong_sphere` one more).
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct ColdUnit<T> {
+    u: [T; 3],
+    len: T,
+}
+
+/// The cold path of [`normalize3_lean`]: a zero length for a zero or non-finite vector, else
+/// the vector scaled by a power of two into the hot range, normalized, and its length scaled
+/// back. `extern "C"` for its return in registers ([`ColdUnit`]); its arguments are the
+/// components one by one, not an array, which would be passed in memory (the hot path would
+/// store it before its test).
 #[cold]
 #[inline(never)]
-fn normalize3_cold<T: Real>(
-    x: T,
-    y: T,
-    z: T,
-    k: LeanBounds<T>,
-    root: impl Fn(T) -> (T, T),
-) -> Option<([T; 3], T)> {
-    // The components one by one, not as an array: an array argument is passed in memory, and
-    // the hot path would store it before its test.
+extern "C" fn normalize3_cold<T: LeanRoot>(x: T, y: T, z: T) -> ColdUnit<T> {
+    let none = ColdUnit {
+        u: [T::ZERO; 3],
+        len: T::ZERO,
+    };
     let v = [x, y, z];
     if !finite3(v) {
-        return None;
+        return none;
     }
     let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
     if !(m > T::ZERO) {
-        return None;
+        return none;
     }
+    let k = T::BOUNDS;
     let (f, back) = if m < T::ONE {
         (k.up, k.down)
     } else {
@@ -117,10 +157,13 @@ fn normalize3_cold<T: Real>(
     // Always true by the bounds' argument (see `LEAN_F32`); kept so that no input can reach
     // `root` outside its domain.
     if !(s2 >= k.lo && s2 <= k.hi) {
-        return None;
+        return none;
     }
-    let (len, inv) = root(s2);
-    Some(([w[0] * inv, w[1] * inv, w[2] * inv], len * back))
+    let (len, inv) = T::root(s2);
+    ColdUnit {
+        u: [w[0] * inv, w[1] * inv, w[2] * inv],
+        len: len * back,
+    }
 }
 
 #[cfg(not(feature = "libm"))]
@@ -235,19 +278,30 @@ macro_rules! impl_real_float {
         impl LeanFloat for $t {
             #[inline(always)]
             fn normalize3_inv(v: [Self; 3]) -> Option<([Self; 3], Self, Self)> {
-                // `lo <= s2 <= hi` as one unsigned comparison of the bits (the same
-                // answer for every `s2`: positive floats order as their bits, and a
-                // negative or NaN `s2` falls outside, as it does the float comparisons).
+                normalize3_lean(v, |u, len, inv, _| (u, len, inv))
+            }
+            #[inline(always)]
+            fn sphere_ratios(v: [Self; 3], r: Self) -> Option<super::sealed::SphereRatios<Self>> {
+                normalize3_lean(v, |u, d, inv, hot| {
+                    let ss = r * inv;
+                    (u, d, if hot { ss } else { Real::min(ss, 1.0) }, [d, r, inv])
+                })
+            }
+        }
+        impl LeanRoot for $t {
+            const BOUNDS: LeanBounds<Self> = $lean;
+            /// `lo <= s2 <= hi` as one unsigned comparison of the bits (the same answer for
+            /// every `s2`: positive floats order as their bits, and a negative or NaN `s2`
+            /// falls outside, as it does the float comparisons).
+            #[inline(always)]
+            fn in_range(s2: Self) -> bool {
                 let (lo, hi) = ($lean.lo.to_bits(), $lean.hi.to_bits());
-                normalize3_lean(
-                    v,
-                    $lean,
-                    |s2: Self| s2.to_bits().wrapping_sub(lo) <= hi - lo,
-                    |s2| {
-                        let r = $sqrt(s2);
-                        (r, 1.0 / r)
-                    },
-                )
+                s2.to_bits().wrapping_sub(lo) <= hi - lo
+            }
+            #[inline(always)]
+            fn root(s2: Self) -> (Self, Self) {
+                let r = $sqrt(s2);
+                (r, 1.0 / r)
             }
         }
     };
@@ -323,5 +377,74 @@ mod tests {
         let v32: std::vec::Vec<[f32; 3]> = v64.iter().map(|v| v.map(|x| x as f32)).collect();
         check(&v64);
         check(&v32);
+    }
+
+    /// The floats' below, and the default `Sealed::sphere_ratios` (normalize, divide, clamp
+    /// always) written out: `sphere_ratios` gives its bits on both paths, the clamp being
+    /// needless on the hot one (`LeanFloat::sphere_ratios`' argument) and needed on the cold
+    /// one, where `1/|v|` is subnormal (at least one case there clamps).
+    #[test]
+    fn sphere_ratios_is_the_always_clamped_quotient() {
+        trait Next: Real + LeanFloat + core::fmt::Debug {
+            /// The largest value below `self` (positive normal `self`).
+            fn below(self) -> Self;
+        }
+        impl Next for f32 {
+            fn below(self) -> Self {
+                f32::from_bits(self.to_bits() - 1)
+            }
+        }
+        impl Next for f64 {
+            fn below(self) -> Self {
+                f64::from_bits(self.to_bits() - 1)
+            }
+        }
+        fn check<T: Next>(vs: &[[T; 3]]) -> usize {
+            let mut clamped = 0;
+            for &v in vs {
+                let Some((u, d)) = T::normalize3(v) else {
+                    assert!(
+                        <T as LeanFloat>::sphere_ratios(v, T::ONE).is_none(),
+                        "{v:?}"
+                    );
+                    continue;
+                };
+                let inv = T::ONE / d;
+                let half = d * T::from_f64(0.5);
+                for r in [
+                    d.below(),
+                    d.below().below(),
+                    d * T::from_f64(0.999_999),
+                    half,
+                ] {
+                    let got = <T as LeanFloat>::sphere_ratios(v, r);
+                    let ss = (r * inv).min(T::ONE);
+                    assert_eq!(got, Some((u, d, ss, [d, r, inv])), "{v:?}, r = {r:?}");
+                    assert!(ss <= T::ONE && ss > T::ZERO, "{v:?}, r = {r:?}");
+                    clamped += usize::from(r * inv > T::ONE);
+                }
+            }
+            clamped
+        }
+        let mut seed = 0x2545_F491u32;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            f64::from(seed) / f64::from(u32::MAX) * 2.0 - 1.0
+        };
+        let mut v32 = std::vec::Vec::new();
+        let mut v64 = std::vec::Vec::new();
+        for (scale32, scale64) in [(1.0, 1.0), (1e-30, 1e-170), (1e30, 1e170), (1.9e38, 1e308)] {
+            for _ in 0..2000 {
+                let w = [next(), next(), next()];
+                v32.push(w.map(|x| (x * scale32) as f32));
+                v64.push(w.map(|x| x * scale64));
+            }
+        }
+        v32.push([0.0; 3]);
+        v64.push([f64::NAN, 0.0, 1.0]);
+        assert!(check(&v32) > 0, "no f32 case needed the cold path's clamp");
+        assert!(check(&v64) > 0, "no f64 case needed the cold path's clamp");
     }
 }

@@ -113,8 +113,9 @@ impl crate::real::sealed::Sealed for Fixed22 {
         // 0 <= r < d: `r 2^k` below `|V|`.
         let rb = r.to_bits();
         let rs = Fixed22::from_bits(if k >= 0 { rb << k } else { rb >> (-k) });
-        // cos sigma = sqrt(S - (r 2^k)^2) / |V|: left to the caller (`sphere_cos`).
-        Some((u, d, rs * inv, [s2, rs, inv]))
+        // cos sigma = sqrt(S - (r 2^k)^2) / |V|: left to the caller (`sphere_cos`). The
+        // rounded `1/|V|` may take `r/|v|` above 1: clamped.
+        Some((u, d, Real::min(rs * inv, Self::ONE), [s2, rs, inv]))
     }
     /// `sqrt(S - (r 2^k)^2) / |V|` from `sphere_ratios`' parts `[S, r 2^k, 1/|V|]`.
     #[inline(always)]
