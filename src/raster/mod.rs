@@ -86,6 +86,7 @@ mod draw;
 pub mod edge;
 #[cfg(feature = "embedded-graphics")]
 pub mod eg;
+mod gouraud;
 pub mod mesh;
 pub mod prepared;
 mod scan;

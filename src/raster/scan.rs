@@ -4,6 +4,7 @@
 //! docs for what is computed and what it costs).
 
 use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
+use super::gouraud::{is_guarded, Spans};
 use super::prepared::PreparedVertex;
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
@@ -44,10 +45,10 @@ pub(super) struct Context<'a, T, S: ?Sized, P: PixelFormat> {
 /// `i32` arithmetic (exact wherever the value itself fits, which it does inside the
 /// triangle).
 #[derive(Clone, Copy, Debug, Default)]
-struct Plane {
-    base: i32,
-    sx: i32,
-    sy: i32,
+pub(super) struct Plane {
+    pub(super) base: i32,
+    pub(super) sx: i32,
+    pub(super) sy: i32,
 }
 
 impl Plane {
@@ -57,7 +58,7 @@ impl Plane {
     /// and the weights fit an `i32` (always on a display; 6 [`mul_64`] otherwise, the same
     /// bits).
     #[inline(always)]
-    fn new(a: [i32; 3], geo: &Geometry) -> Self {
+    pub(super) fn new(a: [i32; 3], geo: &Geometry) -> Self {
         let (da1, o1) = a[1].overflowing_sub(a[0]);
         let (da2, o2) = a[2].overflowing_sub(a[0]);
         let (sx, at_b, sy) = match geo.l32 {
@@ -87,7 +88,7 @@ impl Plane {
     }
     /// The value at column 0 of the row `dy` rows below the anchor row.
     #[inline(always)]
-    fn row(&self, dy: i32) -> i32 {
+    pub(super) fn row(&self, dy: i32) -> i32 {
         self.base.wrapping_add(dy.wrapping_mul(self.sy))
     }
 }
@@ -96,12 +97,12 @@ impl Plane {
 /// `1 - l1 - l2`) with [`BARY_FRAC`] fraction bits, as `(per pixel in x, per pixel in y, at
 /// the anchor)`, the anchor being the centre of the triangle's top-left bounding-box pixel
 /// (`xb`, `yb`).
-struct Geometry {
+pub(super) struct Geometry {
     l1: (i64, i64, i64),
     l2: (i64, i64, i64),
     /// `l1` and `l2` as `[x, y, anchor]` in `i32` when all six fit (any triangle of display
     /// size).
-    l32: Option<([i32; 3], [i32; 3])>,
+    pub(super) l32: Option<([i32; 3], [i32; 3])>,
     xb: i32,
 }
 
@@ -113,7 +114,7 @@ impl Geometry {
     /// -e2/d`, `dl2/dX = -f1/d`, `dl2/dY = e1/d` per sub-pixel (16 per pixel), with `(e, f)`
     /// the vertices' offsets from vertex 0; at the anchor `l = dl/dX dx + dl/dY dy` (vertex 0
     /// has `l1 = l2 = 0`).
-    fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
+    pub(super) fn new(fp: [FixedPoint; 3], d: i64, xb: i32, yb: i32) -> Self {
         Self::new_small(fp, d, xb, yb).unwrap_or_else(|| Self::new_wide(fp, d, xb, yb))
     }
 
@@ -275,64 +276,23 @@ pub(super) fn raster<T, P, S>(
     let depth = Plane::new([v[0].depth, v[1].depth, v[2].depth], &geo);
     match opts.shading {
         Shading::Gouraud => {
-            let planes: [Plane; 3] = core::array::from_fn(|k| {
+            let mut planes: [Plane; 3] = core::array::from_fn(|k| {
                 Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo)
             });
-            let table = ctx.table;
-            const SHIFT: u32 = COLOUR_FRAC - ENCODE_INDEX_BITS;
-            // (Stepping the four attributes by additions instead of `row + x sx` per pixel,
-            // and indexing the band's rows directly, were both measured slower on the
-            // Cortex-M0+: more live values than its 8 low registers. So were, in the
-            // emulated demo: stepping only the depth, the slopes copied into locals (LLVM
-            // then strength-reduces and unrolls the loop, spilling), and one bounds check
-            // for the span's slices instead of the row's and the span's.)
-            tri.for_each_span_in(bounds, |y, xs, xe| {
-                let Some((px, dp)) = band.row_mut(y as u16) else {
-                    return;
-                };
-                let dy = y - yb;
-                let (d0, r0, g0, b0) = (
-                    depth.row(dy),
-                    planes[0].row(dy),
-                    planes[1].row(dy),
-                    planes[2].row(dy),
-                );
-                let (xs, xe) = (xs as usize, xe as usize);
-                let Some(px) = px.get_mut(xs..=xe) else {
-                    return;
-                };
-                let mut x = xs as i32;
-                let mut written = px.len() as u32;
-                match dp.and_then(|d| d.get_mut(xs..=xe)) {
-                    Some(dp) => {
-                        for (p, d) in px.iter_mut().zip(dp.iter_mut()) {
-                            let z = depth16(d0.wrapping_add(x.wrapping_mul(depth.sx)));
-                            if z < *d {
-                                *d = z;
-                                *p = table.pixel(
-                                    r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> SHIFT,
-                                    g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> SHIFT,
-                                    b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> SHIFT,
-                                );
-                            } else {
-                                written -= 1;
-                            }
-                            x += 1;
-                        }
-                    }
-                    None => {
-                        for p in px.iter_mut() {
-                            *p = table.pixel(
-                                r0.wrapping_add(x.wrapping_mul(planes[0].sx)) >> SHIFT,
-                                g0.wrapping_add(x.wrapping_mul(planes[1].sx)) >> SHIFT,
-                                b0.wrapping_add(x.wrapping_mul(planes[2].sx)) >> SHIFT,
-                            );
-                            x += 1;
-                        }
-                    }
+            let guarded = is_guarded(&fp, &geo, [&v[0].colour, &v[1].colour, &v[2].colour]);
+            let spans = Spans {
+                depth,
+                yb,
+                table: ctx.table,
+            };
+            if guarded {
+                for p in &mut planes {
+                    *p = p.guarded();
                 }
-                stats.pixels = stats.pixels.wrapping_add(written);
-            });
+                spans.gouraud::<true>(&tri, bounds, &planes, band, stats);
+            } else {
+                spans.gouraud::<false>(&tri, bounds, &planes, band, stats);
+            }
         }
         Shading::PerPixel => {
             let one = 1i32 << BARY_FRAC;
@@ -391,7 +351,7 @@ pub(super) fn raster<T, P, S>(
 
 /// A depth value with [`DEPTH_FRAC`] fraction bits as the band's 16 bits (clamped).
 #[inline(always)]
-fn depth16(q: i32) -> u16 {
+pub(super) fn depth16(q: i32) -> u16 {
     let z = q >> (DEPTH_FRAC - 16);
     // One unsigned comparison on the common path, the clamp out of line (as the colour
     // table's index: `EncodeTable::pixel`).
