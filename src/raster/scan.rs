@@ -9,7 +9,7 @@ use super::prepared::PreparedVertex;
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
 use super::{Camera, DrawOptions, DrawStats};
-use crate::wide::{dot2_shr24, mul_32, mul_64, mul_hi_full, recip_core};
+use crate::wide::{dot2_shr24, mul_64, mul_hi_full, recip_core};
 use crate::{Real, Rgb, Vec3};
 
 /// Fraction bits of interpolated colours (linear, times the exposure): 1.0 is `1 << 24`.
@@ -153,8 +153,24 @@ impl Geometry {
         };
         let dx = xb * SUBPIXEL + SUBPIXEL / 2 - fp[0].x;
         let dy = yb * SUBPIXEL + SUBPIXEL / 2 - fp[0].y;
-        // Products below 2^56, their sum exact in an i64.
-        let anchor = |gx: i32, gy: i32| i32::try_from((mul_32(gx, dx) + mul_32(gy, dy)) >> 4).ok();
+        // `floor((gx dx + gy dy) / 16)` if it fits an i32. The anchor lies less than a pixel
+        // right of (below) the leftmost (topmost) vertex, so `-2^15 < dx, dy < 16`: with
+        // `g = gh 2^16 + gl`, `gh dx + gh' dy` fits an i32 (each below 2^30), and so does
+        // each `gl dx` (below 2^31); the sum is `h 2^16 + l1 + l2` and its floor by 16 is
+        // `h 2^12 + floor(l1 / 16) + floor(l2 / 16) + carry`, no 64-bit product or sum (the
+        // same values: `the_32_bit_geometry_equals_the_64_bit_one`).
+        let anchor = |gx: i32, gy: i32| {
+            let h = (gx >> 16) * dx + (gy >> 16) * dy;
+            let (l1, l2) = ((gx & 0xFFFF) * dx, (gy & 0xFFFF) * dy);
+            let low = (l1 >> 4) + (l2 >> 4) + (((l1 & 15) + (l2 & 15)) >> 4);
+            let high = h << 12;
+            if high >> 12 == h {
+                high.checked_add(low)
+            } else {
+                // `h 2^12` beyond an i32, the sum perhaps not (rare: exactly, in an i64).
+                i32::try_from((i64::from(h) << 12) + i64::from(low)).ok()
+            }
+        };
         let (g1x, g1y) = (scale(f2)?, scale(-e2)?);
         let (g2x, g2y) = (scale(-f1)?, scale(e1)?);
         let l1 = [g1x, g1y, anchor(g1x, g1y)?];
