@@ -62,10 +62,24 @@
 //! the transfer before it (up to 123 000 cycles), and when no object reaches the last band
 //! core 0 would be waiting there with nothing else to do. Such a band is instead sent in the
 //! next frame before anything of it, by core 1 between its shader calls once the sender is
-//! free ([`send_carried`]; by core 0 before its first band if core 1 has not): the display
+//! free ([`send_parked`]; by core 0 before its first band if core 1 has not): the display
 //! still receives each frame whole, top left to bottom right, before the next one begins.
 //! Measured in rp2040js, frames 1 to 15 of `run.mjs --dual --frames 16`: 5 174 951 -> 5 036 814
 //! cycles a frame on average.
+//!
+//! **So are the last drawn bands, when the SPI is busy.** At the end of a frame the bands
+//! still to be sent queue for the SPI (123 000 cycles each) while both cores have nothing to
+//! draw: core 0 waited about 990 us for core 1's last band to go out, then for its transfer,
+//! before it could send the last band. Now core 1 parks its final band of a frame instead of
+//! waiting when the sender is not free at once, and core 0 the last band when any band is
+//! parked or the sender is busy ([`PARKED`]: the band keeps its buffers until sent); the
+//! next frame sends them first, core 1's before the last band, in the same way as an empty
+//! last band ([`send_parked`]), while the SPI would idle during the transform and the
+//! shading, and each core takes its band back before drawing. Core 0 starts a frame once
+//! core 1 is done drawing the last one. Measured in rp2040js, frames 1 to 15: 4 579 100 ->
+//! 4 533 483 cycles a frame on average (frame 1: 4 560 394 -> 4 437 182); core 0's wait at
+//! the end of a frame went from about 990 us to 5, and part of it to its sends during the
+//! bands (the SPI's pacing).
 #![no_std]
 #![no_main]
 // Every line here is safe Rust but two, each allowed where it is and explained there.
@@ -164,8 +178,13 @@ struct Handoff {
     /// no core draws.
     early: u16,
     /// The last frame's last band, which no object reached, is still to be sent: before any
-    /// band of this frame (see [`send_carried`]).
+    /// band of this frame (see [`send_parked`]).
     carried: bool,
+    /// The bands of this frame parked (drawn, to be sent in the next frame: [`PARKED`]).
+    parked: u16,
+    /// Core 1 is drawing this frame's bands (set as it takes the frame, cleared once it has
+    /// sent or parked its last band): core 0 starts the next frame only after.
+    drawing: bool,
     /// What drawing core 1's bands of this frame did (added by core 1 as it sends each band,
     /// read by core 0 once every band is sent).
     stats: DrawStats,
@@ -189,6 +208,22 @@ struct Handoff {
 /// flash), which `None` here is not.
 static SENDER: Mutex<RefCell<Option<Sender>>> = Mutex::new(RefCell::new(None));
 
+/// A core's band parked at the end of a frame: drawn, its transfer not yet begun (`sent`
+/// false), or sent and waiting for its core to take it back (`sent` true).
+struct Parked {
+    band: Band<'static, Rgb565>,
+    sent: bool,
+}
+
+/// Each core's parked band (index: the core), apart from [`HANDOFF`] for the same reason as
+/// [`SENDER`]. A frame's last bands would otherwise wait for the SPI: the transfer before them
+/// runs for up to 123 000 cycles after the last band is drawn, while both cores have nothing
+/// to do. Core 1 parks its final band of a frame when the sender is not free at once, and
+/// core 0 the last band when any band is parked or the sender is not free; both go out early
+/// in the next frame, in order (core 1's, then the last band), before anything of that
+/// frame ([`send_parked`]), while the SPI would idle during the transform and the shading.
+static PARKED: Mutex<RefCell<[Option<Parked>; 2]>> = Mutex::new(RefCell::new([None, None]));
+
 static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
     frame: None,
     order: [0; BANDS as usize - 2],
@@ -198,6 +233,8 @@ static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
     sent: 0,
     early: 0,
     carried: false,
+    parked: 0,
+    drawing: false,
     stats: DrawStats {
         triangles: 0,
         rasterized: 0,
@@ -250,13 +287,14 @@ fn share_visible(demo: &mut Demo<'_, Fixed22>, core: usize) {
 /// vertices first: [`share_visible`].)
 fn share_shading(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: usize) -> u32 {
     share_visible(demo, core);
-    // Core 1 sends the last frame's carried band and this frame's empty bands between its
+    // Core 1 sends what the last frame left (its parked bands, or its last band carried as
+    // empty) and this frame's empty bands between its
     // shader calls.
-    let mut carried = core == 1 && critical_section::with(|cs| HANDOFF.borrow_ref(cs).carried);
+    let mut carried = core == 1 && anything_parked();
     let mut pending = if core == 1 { empty_bands(demo) } else { 0 };
     let calls = demo.shade_share_polling(frame, core, 2, || {
         if carried {
-            carried = !send_carried(false);
+            carried = !send_parked(false);
         } else {
             send_empty_bands(&mut pending);
         }
@@ -418,46 +456,144 @@ fn send_empty_bands(pending: &mut u16) {
     cortex_m::asm::sev();
 }
 
-/// Sends the last frame's last band (the background: nothing reached it) if it is still to
-/// be sent, when the display's sender is free and its last transfer done, or with `wait`
-/// after waiting for them. Returns whether it is sent (or was not to be). Core 0 does not
-/// wait for that band's turn at the end of a frame (the transfer before it is still running):
-/// core 1 sends it between its shader calls in the next frame, before anything of that frame
-/// (core 0 before its first band if core 1 has not), so a frame still reaches the display
-/// from its top left to its bottom right pixel. Measured in rp2040js (two cores, frames 1 to
-/// 15 of `--frames 16`): see the README's frame table.
-fn send_carried(wait: bool) -> bool {
+/// What [`send_parked`] sends next.
+enum Pending {
+    /// Core `k`'s parked band.
+    Band(usize, Band<'static, Rgb565>),
+    /// The last frame's last band, which no object reached (the background).
+    Empty,
+}
+
+/// Sends what the last frame left to send, in order: core 1's parked band, core 0's (the last
+/// band), or the last band carried as empty (the background: nothing reached it), each when
+/// the display's sender is free and its last transfer done; with `wait`, waiting for them
+/// until all is sent, otherwise returning when the sender is busy. Returns whether all is
+/// sent (or nothing was to be). A sent band goes back to [`PARKED`] for its core to take
+/// ([`take_back`]). Core 1 calls it between its shader calls and both cores before their
+/// first band, so a frame still reaches the display from its top left to its bottom right
+/// pixel, before anything of the next. Measured in rp2040js (two cores, frames 1 to 15 of
+/// `--frames 16`): see the README's frame table.
+fn send_parked(wait: bool) -> bool {
     loop {
         let taken = critical_section::with(|cs| {
             let mut h = HANDOFF.borrow_ref_mut(cs);
-            if !h.carried {
+            let mut parked = PARKED.borrow_ref_mut(cs);
+            let unsent = |p: &Option<Parked>| p.as_ref().is_some_and(|p| !p.sent);
+            let next = if unsent(&parked[1]) {
+                Some(1)
+            } else if unsent(&parked[0]) {
+                Some(0)
+            } else if h.carried {
+                Some(2)
+            } else {
+                None
+            };
+            let Some(next) = next else {
                 return Some(None);
-            }
+            };
             let mut slot = SENDER.borrow_ref_mut(cs);
             match slot.as_ref() {
                 Some(s) if s.is_idle() => {
-                    h.carried = false;
-                    Some(slot.take())
+                    let sender = slot.take()?;
+                    let pending = match parked.get_mut(next).and_then(Option::take) {
+                        Some(p) => Pending::Band(next, p.band),
+                        None => {
+                            h.carried = false;
+                            Pending::Empty
+                        }
+                    };
+                    Some(Some((sender, pending)))
                 }
                 _ => None,
             }
         });
         match taken {
-            // Not to be sent (any more).
+            // Nothing (more) to send.
             Some(None) => return true,
-            Some(Some(mut sender)) => {
-                let last = BANDS - 1;
-                if let Err(e) = sender.send_uniform(last * BAND_ROWS, BAND_ROWS, BACKGROUND) {
-                    defmt::error!("band {}: {}", last, defmt::Debug2Format(&e));
+            Some(Some((mut sender, pending))) => {
+                match pending {
+                    Pending::Band(core, mut band) => {
+                        let k = band.y0() / BAND_ROWS;
+                        send(&mut sender, &mut band, k);
+                        critical_section::with(|cs| {
+                            if let Some(slot) = PARKED.borrow_ref_mut(cs).get_mut(core) {
+                                *slot = Some(Parked { band, sent: true });
+                            }
+                        });
+                    }
+                    Pending::Empty => {
+                        let last = BANDS - 1;
+                        if let Err(e) = sender.send_uniform(last * BAND_ROWS, BAND_ROWS, BACKGROUND)
+                        {
+                            defmt::error!("band {}: {}", last, defmt::Debug2Format(&e));
+                        }
+                    }
                 }
                 critical_section::with(|cs| *SENDER.borrow_ref_mut(cs) = Some(sender));
                 cortex_m::asm::sev();
-                return true;
             }
             None if !wait => return false,
             None => cortex_m::asm::wfe(),
         }
     }
+}
+
+/// Whether the last frame left anything to send ([`send_parked`]).
+fn anything_parked() -> bool {
+    critical_section::with(|cs| {
+        HANDOFF.borrow_ref(cs).carried
+            || PARKED
+                .borrow_ref(cs)
+                .iter()
+                .any(|p| p.as_ref().is_some_and(|p| !p.sent))
+    })
+}
+
+/// Core `core`'s band back from [`PARKED`] once it is sent (after [`send_parked`]`(true)`),
+/// if the core parked it.
+fn take_back(core: usize) -> Option<Band<'static, Rgb565>> {
+    critical_section::with(|cs| {
+        let mut parked = PARKED.borrow_ref_mut(cs);
+        let slot = parked.get_mut(core)?;
+        if slot.as_ref().is_some_and(|p| p.sent) {
+            slot.take().map(|p| p.band)
+        } else {
+            None
+        }
+    })
+}
+
+/// Parks core `core`'s drawn band `k` ([`PARKED`]), with its counts as [`give_back`] records
+/// them.
+fn park(core: usize, band: Band<'static, Rgb565>, k: u16, stats: &DrawStats) {
+    critical_section::with(|cs| {
+        if let Some(slot) = PARKED.borrow_ref_mut(cs).get_mut(core) {
+            *slot = Some(Parked { band, sent: false });
+        }
+        let mut h = HANDOFF.borrow_ref_mut(cs);
+        h.parked += 1;
+        h.cost[usize::from(k)] = band_cost(stats);
+        if core == 1 {
+            h.stats.rasterized += stats.rasterized;
+            h.stats.pixels += stats.pixels;
+        }
+    });
+    cortex_m::asm::sev();
+}
+
+/// The display's sender if `ready` says so and it is free with its last transfer done, at
+/// once (`None` otherwise).
+fn try_take_sender(ready: impl Fn(&Handoff) -> bool) -> Option<Sender> {
+    critical_section::with(|cs| {
+        if !ready(&HANDOFF.borrow_ref(cs)) {
+            return None;
+        }
+        let mut slot = SENDER.borrow_ref_mut(cs);
+        match slot.as_ref() {
+            Some(s) if s.is_idle() => slot.take(),
+            _ => None,
+        }
+    })
 }
 
 /// Takes the display's sender once `ready` says so, waiting while the other core sends.
@@ -510,23 +646,58 @@ fn core1(buffers: &'static mut MeshBuffers<Fixed22>) {
     // Core 1's band and depth band, in statics like core 0's (7.5 KiB each).
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
-    let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
+    let mut own = Some(Band::new(pixels, Some(depth), WIDTH, 0).unwrap());
     loop {
-        let n = wait_for(|h| h.frame.take());
+        let n = wait_for(|h| {
+            let n = h.frame.take()?;
+            h.drawing = true;
+            Some(n)
+        });
         let frame = demo.frame(n).unwrap();
         share_transform(&mut demo, &frame, 1);
         let shaded = share_shading(&mut demo, &frame, 1);
         critical_section::with(|cs| HANDOFF.borrow_ref_mut(cs).stats.shaded += shaded);
+        // The last frame's parked bands out (if the shading has not sent them), and this
+        // core's band back if it parked it.
+        send_parked(true);
+        if own.is_none() {
+            own = take_back(1);
+        }
         while let Some(k) = next_band(1) {
+            let Some(band) = own.as_mut() else {
+                defmt::error!("core 1 has no band");
+                break;
+            };
             let mut stats = DrawStats::default();
             band.move_to(k * BAND_ROWS);
             band.clear(BACKGROUND);
-            demo.draw_band(&frame, &mut band, &mut stats).unwrap();
-            // (After the first band, which core 0 sends.)
-            let mut sender = take_sender(|h| h.sent > 0);
-            send(&mut sender, &mut band, k);
-            give_back(sender, k, &stats, 1);
+            demo.draw_band(&frame, band, &mut stats).unwrap();
+            // (After the first band, which core 0 sends.) The final band of this core's
+            // share is parked if the sender is not free at once.
+            let last_of_ours = critical_section::with(|cs| {
+                let h = HANDOFF.borrow_ref(cs);
+                h.lo >= h.hi
+            });
+            let sender = if last_of_ours {
+                try_take_sender(|h| h.sent > 0)
+            } else {
+                Some(take_sender(|h| h.sent > 0))
+            };
+            match sender {
+                Some(mut sender) => {
+                    send(&mut sender, band, k);
+                    give_back(sender, k, &stats, 1);
+                }
+                None => {
+                    if let Some(band) = own.take() {
+                        park(1, band, k, &stats);
+                    }
+                    break;
+                }
+            }
         }
+        critical_section::with(|cs| HANDOFF.borrow_ref_mut(cs).drawing = false);
+        cortex_m::asm::sev();
     }
 }
 
@@ -614,7 +785,7 @@ fn run() -> ! {
     let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
-    let mut band = Band::new(pixels, Some(depth), WIDTH, 0).unwrap();
+    let mut own = Some(Band::new(pixels, Some(depth), WIDTH, 0).unwrap());
 
     // 11. Each frame: split the bands by the last frame's cost and tell core 1 to start, then
     //     draw the first band, the bands from the back of the list (most expensive first),
@@ -626,15 +797,20 @@ fn run() -> ! {
     let last = BANDS - 1;
     loop {
         let start = timer.get_counter_low();
-        critical_section::with(|cs| {
-            let mut h = HANDOFF.borrow_ref_mut(cs);
+        // (Once core 1 is done with the last frame's bands.)
+        wait_for(|h| {
+            if h.drawing {
+                return None;
+            }
             h.order = band_order(&h.cost);
             h.lo = 0;
             h.hi = h.order.len();
             h.sent = 0;
             h.early = 0;
+            h.parked = 0;
             h.stats = DrawStats::default();
             h.frame = Some(n);
+            Some(())
         });
         cortex_m::asm::sev();
         let frame = demo.frame(n).unwrap();
@@ -647,8 +823,12 @@ fn run() -> ! {
         };
         let t_shade = timer.get_counter_low();
         let (mut raster_us, mut wait_us, mut send_us) = (0u32, 0u32, 0u32);
-        // The last frame's last band first, if core 1 has not sent it while shading.
-        send_carried(true);
+        // What the last frame left to send first, if core 1 has not sent it while shading, and
+        // this core's band back if it parked it.
+        send_parked(true);
+        if own.is_none() {
+            own = take_back(0);
+        }
         // The first band, unless core 1 sent it (empty) while shading.
         let first_sent = critical_section::with(|cs| HANDOFF.borrow_ref(cs).early & 1 != 0);
         let mut next = if first_sent {
@@ -659,13 +839,13 @@ fn run() -> ! {
         while let Some(k) = next {
             let is_last = k == last;
             if is_last && demo.band_is_empty(k * BAND_ROWS, BAND_ROWS) {
-                // Nothing reaches it: carried into the next frame (`send_carried`) once every
-                // other band has been handed over, instead of waiting here for the transfer
-                // before it.
+                // Nothing reaches it: carried into the next frame (`send_parked`) once every
+                // other band has been handed over or parked, instead of waiting here for the
+                // transfer before it.
                 let t1 = timer.get_counter_low();
                 critical_section::with(|cs| HANDOFF.borrow_ref_mut(cs).cost[usize::from(k)] = 0);
                 wait_for(|h| {
-                    if h.sent == last {
+                    if h.sent + h.parked == last {
                         h.carried = true;
                         Some(())
                     } else {
@@ -675,20 +855,40 @@ fn run() -> ! {
                 wait_us += timer.get_counter_low().wrapping_sub(t1);
                 break;
             }
+            let Some(band) = own.as_mut() else {
+                defmt::error!("core 0 has no band");
+                break;
+            };
             let t0 = timer.get_counter_low();
             let mut band_stats = DrawStats::default();
             band.move_to(k * BAND_ROWS);
             band.clear(BACKGROUND);
-            demo.draw_band(&frame, &mut band, &mut band_stats).unwrap();
+            demo.draw_band(&frame, band, &mut band_stats).unwrap();
             let t1 = timer.get_counter_low();
             raster_us += t1.wrapping_sub(t0);
-            // The last band waits for every other band to be sent.
-            let mut sender = take_sender(|h| !is_last || h.sent == last);
+            let sender = if is_last {
+                // The last band waits for every other band to be sent or parked (core 1 done
+                // drawing), then goes out now if none is parked and the sender is free, or is
+                // parked itself.
+                wait_for(|h| (h.sent + h.parked == last).then_some(()));
+                try_take_sender(|h| h.parked == 0)
+            } else {
+                Some(take_sender(|_| true))
+            };
             let t2 = timer.get_counter_low();
             wait_us += t2.wrapping_sub(t1);
-            send(&mut sender, &mut band, k);
-            send_us += timer.get_counter_low().wrapping_sub(t2);
-            give_back(sender, k, &band_stats, 0);
+            match sender {
+                Some(mut sender) => {
+                    send(&mut sender, band, k);
+                    send_us += timer.get_counter_low().wrapping_sub(t2);
+                    give_back(sender, k, &band_stats, 0);
+                }
+                None => {
+                    if let Some(band) = own.take() {
+                        park(0, band, k, &band_stats);
+                    }
+                }
+            }
             stats.rasterized += band_stats.rasterized;
             stats.pixels += band_stats.pixels;
             next = if is_last {
