@@ -572,13 +572,21 @@ fn park(core: usize, band: Band<'static, Rgb565>, k: u16, stats: &DrawStats) {
         }
         let mut h = HANDOFF.borrow_ref_mut(cs);
         h.parked += 1;
-        h.cost[usize::from(k)] = band_cost(stats);
-        if core == 1 {
-            h.stats.rasterized += stats.rasterized;
-            h.stats.pixels += stats.pixels;
-        }
+        record(&mut h, k, stats, core);
     });
     cortex_m::asm::sev();
+}
+
+/// Records core `core`'s band `k` as drawn, with its counts `stats`: its cost for the next
+/// frame's order, and core 1's counts for core 0's log.
+fn record(h: &mut Handoff, k: u16, stats: &DrawStats, core: usize) {
+    if let Some(cost) = h.cost.get_mut(usize::from(k)) {
+        *cost = band_cost(stats);
+    }
+    if core == 1 {
+        h.stats.rasterized += stats.rasterized;
+        h.stats.pixels += stats.pixels;
+    }
 }
 
 /// The display's sender if `ready` says so and it is free with its last transfer done, at
@@ -620,11 +628,7 @@ fn give_back(sender: Sender, k: u16, stats: &DrawStats, core: usize) {
         *SENDER.borrow_ref_mut(cs) = Some(sender);
         let mut h = HANDOFF.borrow_ref_mut(cs);
         h.sent += 1;
-        h.cost[usize::from(k)] = band_cost(stats);
-        if core == 1 {
-            h.stats.rasterized += stats.rasterized;
-            h.stats.pixels += stats.pixels;
-        }
+        record(&mut h, k, stats, core);
     });
     cortex_m::asm::sev();
 }
