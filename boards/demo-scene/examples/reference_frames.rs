@@ -10,7 +10,7 @@
 
 use std::path::PathBuf;
 
-use arealight::raster::{Band, Rgb565, Shading};
+use arealight::raster::{Band, EncodeTable, Rgb565, Shading};
 use arealight::Fixed22;
 use demo_scene::{Demo, MeshBuffers, BAND_PIXELS, HEIGHT, WIDTH};
 
@@ -18,7 +18,9 @@ use demo_scene::{Demo, MeshBuffers, BAND_PIXELS, HEIGHT, WIDTH};
 /// use of the demo-scene API here (keep it in step with the firmware's frame loop).
 fn render(count: u32) -> Vec<Vec<Rgb565>> {
     let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
-    let mut demo = Demo::new(&mut buffers, Shading::Gouraud).expect("the scene's constants");
+    let mut table = Box::new(EncodeTable::zeroed());
+    let mut demo =
+        Demo::new(&mut buffers, &mut table, Shading::Gouraud).expect("the scene's constants");
     let (mut pixels, mut depth) = (vec![Rgb565(0); BAND_PIXELS], vec![0u16; BAND_PIXELS]);
     let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0).expect("a WIDTH-wide band");
     (0..count)

@@ -24,11 +24,12 @@
 //! below 512.
 //!
 //! ```
-//! use arealight::raster::{Band, Rgb565, Shading};
+//! use arealight::raster::{Band, EncodeTable, Rgb565, Shading};
 //! use demo_scene::{Demo, MeshBuffers, BACKGROUND, BAND_PIXELS, WIDTH};
 //!
 //! let mut buffers = Box::new(MeshBuffers::<f32>::new());
-//! let mut demo = Demo::new(&mut buffers, Shading::Gouraud)?;
+//! let mut table = Box::new(EncodeTable::zeroed());
+//! let mut demo = Demo::new(&mut buffers, &mut table, Shading::Gouraud)?;
 //! let (mut pixels, mut depth) = ([Rgb565(0); BAND_PIXELS], [0u16; BAND_PIXELS]);
 //! let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0)?;
 //! let frame = demo.frame(0)?;
@@ -113,7 +114,8 @@ const LAMP_HEIGHT: f64 = 0.75;
 /// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
 /// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
 /// [`PreparedVertex`] per vertex, one [`TriangleRows`] per triangle, the sphere's kept
-/// [`LightSums`]) and the encoding table. About 68 KiB with `f32` or `Fixed22`. Put it in a `static` initialized at link time (it is
+/// [`LightSums`]): 61 584 bytes with `f32` or `Fixed22` (the encoding table, 16 390 bytes, is
+/// apart: [`Demo::new`], which two cores can share, [`Demo::sharing`]). Put it in a `static` initialized at link time (it is
 /// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
@@ -131,7 +133,6 @@ pub struct MeshBuffers<T> {
     sphere_sums: [LightSums<T>; SPHERE_VERTICES],
     torus_rows: [TriangleRows; TORUS_TRIANGLES],
     lamp_rows: [TriangleRows; LAMP_TRIANGLES],
-    table: EncodeTable,
 }
 
 impl<T: Real> MeshBuffers<T> {
@@ -157,7 +158,6 @@ impl<T: Real> MeshBuffers<T> {
             sphere_sums: [LightSums::ZERO; SPHERE_VERTICES],
             torus_rows: [TriangleRows::EMPTY; TORUS_TRIANGLES],
             lamp_rows: [TriangleRows::EMPTY; LAMP_TRIANGLES],
-            table: EncodeTable::zeroed(),
         }
     }
 }
@@ -242,12 +242,18 @@ impl<T: Real> arealight::raster::Shader<T> for Glow<T> {
     }
 }
 
+/// The scene's encoding: gamma 2 (a square root per channel) instead of sRGB (a powf per
+/// channel), within 0.05 of sRGB; through a table either way, so only its 4097 entries pay for
+/// it.
+const ENCODING: Encoding = Encoding::Gamma2;
+
 fn v3<T: Real>(v: [f64; 3]) -> Vec3<T> {
     Vec3::from_f64(v)
 }
 
 impl<'a, T: Real> Demo<'a, T> {
-    /// Fills `buffers` with the meshes and the encoding table and sets up the camera and
+    /// Fills `buffers` with the meshes and `table` with the scene's encoding (gamma 2) and
+    /// sets up the camera and
     /// materials. `shading`: [`Shading::PerPixel`] (every visible pixel runs both lights'
     /// Lambert and Phong models: the area lights' soft highlights, slow) or
     /// [`Shading::Gouraud`] (the models at the visible vertices only, once per frame each:
@@ -255,7 +261,43 @@ impl<'a, T: Real> Demo<'a, T> {
     ///
     /// # Errors
     /// None with the constants above; the mesh generators' and constructors' errors otherwise.
-    pub fn new(buffers: &'a mut MeshBuffers<T>, shading: Shading) -> Result<Self, RasterError> {
+    pub fn new(
+        buffers: &'a mut MeshBuffers<T>,
+        table: &'a mut EncodeTable,
+        shading: Shading,
+    ) -> Result<Self, RasterError> {
+        table.fill::<T>(ENCODING);
+        Self::build(buffers, table, shading)
+    }
+
+    /// [`Demo::new`] with an encoding table another `Demo` filled ([`Demo::table`]), shared:
+    /// the two cores of the RP2040 firmware draw through one table (16 KiB).
+    ///
+    /// # Errors
+    /// [`RasterError::BadParameter`] (`"table"`) for a table not filled with the scene's
+    /// encoding (e.g. a zeroed one); otherwise as [`Demo::new`].
+    pub fn sharing(
+        buffers: &'a mut MeshBuffers<T>,
+        table: &'a EncodeTable,
+        shading: Shading,
+    ) -> Result<Self, RasterError> {
+        if table.encoding() != ENCODING {
+            return Err(RasterError::BadParameter("table"));
+        }
+        Self::build(buffers, table, shading)
+    }
+
+    /// The encoding table this scene draws through (for [`Demo::sharing`]).
+    pub fn table(&self) -> &'a EncodeTable {
+        self.table
+    }
+
+    /// [`Demo::new`]'s work once the table is filled.
+    fn build(
+        buffers: &'a mut MeshBuffers<T>,
+        table: &'a EncodeTable,
+        shading: Shading,
+    ) -> Result<Self, RasterError> {
         let MeshBuffers {
             sphere_vertices,
             sphere_triangles,
@@ -270,7 +312,6 @@ impl<'a, T: Real> Demo<'a, T> {
             torus_rows,
             lamp_rows,
             sphere_sums,
-            table,
         } = buffers;
         let sphere = mesh::uv_sphere(
             T::ONE,
@@ -320,13 +361,9 @@ impl<'a, T: Real> Demo<'a, T> {
         .with_depth_range(T::from_f64(1.0), T::from_f64(6.0))?;
         let mut lit = DrawOptions::new(shading);
         lit.cull = Cull::Back;
-        // Gamma 2 (a square root per channel) instead of sRGB (a powf per channel), within
-        // 0.05 of sRGB; through a table either way, so only its 4097 entries pay for it.
-        lit.encoding = Encoding::Gamma2;
+        lit.encoding = ENCODING;
         let mut emissive = DrawOptions::new(Shading::Gouraud);
-        emissive.encoding = Encoding::Gamma2;
-        table.fill::<T>(Encoding::Gamma2);
-        let table: &'a EncodeTable = table;
+        emissive.encoding = ENCODING;
         // The panel: 2 x 1.4 units, 1.9 above the floor-less ground, facing down (a
         // polygon light emits from both faces).
         let panel = PolygonLight::new(&[

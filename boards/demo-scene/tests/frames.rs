@@ -2,7 +2,7 @@
 //! RP2040 path), band by band exactly as the boards do, and checks that they show the scene
 //! and agree. `DEMO_SCENE_PPM=dir cargo test -- --nocapture` also writes the frames as PPM.
 
-use arealight::raster::{Band, DrawStats, Rgb565, Shading};
+use arealight::raster::{Band, DrawStats, EncodeTable, Rgb565, Shading};
 use arealight::{Fixed22, Real};
 use demo_scene::{Demo, MeshBuffers, BACKGROUND, BAND_PIXELS, HEIGHT, PERIOD, WIDTH};
 
@@ -16,7 +16,8 @@ fn render_rows<T: Real>(
     rows: u16,
 ) -> (Vec<Rgb565>, DrawStats, std::time::Duration) {
     let mut buffers = Box::new(MeshBuffers::<T>::new());
-    let mut demo = Demo::new(&mut buffers, shading).unwrap();
+    let mut table = Box::new(EncodeTable::zeroed());
+    let mut demo = Demo::new(&mut buffers, &mut table, shading).unwrap();
     let rows_px = WIDTH as usize * rows as usize;
     let (mut pixels, mut depth) = (vec![Rgb565(0); rows_px], vec![0u16; rows_px]);
     let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0).unwrap();
@@ -117,9 +118,11 @@ fn empty_bands_are_the_background_and_polling_shades_the_same() {
     // without drawing them: drawn, they must be exactly that. Its core 1 shades through
     // `shade_share_polling`: one poll per shader call, the same colours as `shade_share`.
     let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
-    let mut demo = Demo::new(&mut buffers, Shading::Gouraud).unwrap();
+    let mut table = Box::new(EncodeTable::zeroed());
+    let mut demo = Demo::new(&mut buffers, &mut table, Shading::Gouraud).unwrap();
     let mut buffers2 = Box::new(MeshBuffers::<Fixed22>::new());
-    let mut polled = Demo::new(&mut buffers2, Shading::Gouraud).unwrap();
+    let mut table2 = Box::new(EncodeTable::zeroed());
+    let mut polled = Demo::new(&mut buffers2, &mut table2, Shading::Gouraud).unwrap();
     let (mut pixels, mut depth) = (vec![Rgb565(0); BAND_PIXELS], vec![0u16; BAND_PIXELS]);
     let rows = (BAND_PIXELS / WIDTH as usize) as u16;
     let (mut empty, mut drawn) = (0, 0);
@@ -164,7 +167,8 @@ fn every_position_fits_fixed_point() {
     // Demo::frame builds the lights through constructors that refuse positions beyond
     // Fixed22::COORDINATE_LIMIT: every frame of the period must build.
     let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
-    let demo = Demo::new(&mut buffers, Shading::PerPixel).unwrap();
+    let mut table = Box::new(EncodeTable::zeroed());
+    let demo = Demo::new(&mut buffers, &mut table, Shading::PerPixel).unwrap();
     for n in 0..PERIOD {
         demo.frame(n).unwrap();
     }
@@ -198,10 +202,12 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
     let frames = [0, 1, 2, PERIOD / 3, PERIOD / 3 + 1, PERIOD - 1, 0];
     for shading in [Shading::Gouraud, Shading::PerPixel] {
         let mut kept_buffers = Box::new(MeshBuffers::<Fixed22>::new());
-        let mut kept = Demo::new(&mut kept_buffers, shading).unwrap();
+        let mut kept_table = Box::new(EncodeTable::zeroed());
+        let mut kept = Demo::new(&mut kept_buffers, &mut kept_table, shading).unwrap();
         for n in frames {
             let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
-            let mut fresh = Demo::new(&mut fresh_buffers, shading).unwrap();
+            let mut fresh_table = Box::new(EncodeTable::zeroed());
+            let mut fresh = Demo::new(&mut fresh_buffers, &mut fresh_table, shading).unwrap();
             let frame = fresh.frame(n).unwrap();
             let calls = fresh.prepare(&frame);
             let want = drawn(&fresh, &frame);
@@ -220,16 +226,19 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
             Box::new(MeshBuffers::<Fixed22>::new()),
             Box::new(MeshBuffers::<Fixed22>::new()),
         );
-        let mut cores = [
-            Demo::new(&mut b0, Shading::Gouraud).unwrap(),
-            Demo::new(&mut b1, Shading::Gouraud).unwrap(),
-        ];
+        // The cores' two scenes share one encoding table, as in the firmware.
+        let mut table = Box::new(EncodeTable::zeroed());
+        let first = Demo::new(&mut b0, &mut table, Shading::Gouraud).unwrap();
+        let second = Demo::sharing(&mut b1, first.table(), Shading::Gouraud).unwrap();
+        let mut cores = [first, second];
         let mut screen = Box::new(ScreenExchange::<Fixed22>::new());
         let mut visible = Box::new(VisibleExchange::new());
         let mut colours = Box::new([ColourExchange::new(), ColourExchange::new()]);
         for (i, n) in frames.into_iter().enumerate() {
             let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
-            let mut fresh = Demo::new(&mut fresh_buffers, Shading::Gouraud).unwrap();
+            let mut fresh_table = Box::new(EncodeTable::zeroed());
+            let mut fresh =
+                Demo::new(&mut fresh_buffers, &mut fresh_table, Shading::Gouraud).unwrap();
             let frame = fresh.frame(n).unwrap();
             let calls = fresh.prepare(&frame);
             let want = drawn(&fresh, &frame);
@@ -281,7 +290,8 @@ fn a_carried_last_band_gives_the_frames_of_render_frame() {
     for rows in [40u16, 16] {
         let rows_px = WIDTH as usize * rows as usize;
         let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
-        let mut demo = Demo::new(&mut buffers, Shading::Gouraud).unwrap();
+        let mut table = Box::new(EncodeTable::zeroed());
+        let mut demo = Demo::new(&mut buffers, &mut table, Shading::Gouraud).unwrap();
         let (mut pixels, mut depth) = (vec![Rgb565(0); rows_px], vec![0u16; rows_px]);
         let mut band = Band::new(&mut pixels, Some(&mut depth), WIDTH, 0).unwrap();
         let mut display = vec![Rgb565(0); FRAME_PIXELS];

@@ -7,7 +7,7 @@
 //! module (of demo-scene's source, included with `#[path]`).
 
 use crate::demo_scene::{Demo, FrameError, FrameReport, MeshBuffers, Object};
-use arealight::raster::{Band, RasterError, Rgb565, Shading};
+use arealight::raster::{Band, EncodeTable, RasterError, Rgb565, Shading};
 
 /// The frames rendered, in this order, in every mode.
 pub const FRAMES: [u32; 2] = [0, 30];
@@ -21,16 +21,30 @@ pub const MODES: [(&str, [Shading; 2]); 3] = [
     ("per_pixel", [Shading::PerPixel, Shading::PerPixel]),
 ];
 
-/// The storage a [`Demo`] borrows: the meshes and their per-frame data (about 60 KiB in
-/// `f32`). The firmware keeps it in a `static` with the constant initializer `Storage::new()`.
-pub type Storage = MeshBuffers<f32>;
+/// The storage a [`Demo`] borrows: the meshes and their per-frame data (61 584 bytes in
+/// `f32`) and the encoding table (16 390 bytes). The firmware keeps it in a `static` with the
+/// constant initializer `Storage::new()`.
+pub struct Storage {
+    meshes: MeshBuffers<f32>,
+    table: EncodeTable,
+}
+
+impl Storage {
+    /// Zeroed storage ([`demo`] fills it).
+    pub const fn new() -> Self {
+        Storage {
+            meshes: MeshBuffers::new(),
+            table: EncodeTable::zeroed(),
+        }
+    }
+}
 
 /// The demo scene in `f32` with `shading` for the sphere and the torus.
 ///
 /// # Errors
 /// `Demo::new`'s (none with the scene's constants).
 pub fn demo(storage: &mut Storage, shading: [Shading; 2]) -> Result<Demo<'_, f32>, RasterError> {
-    let mut demo = Demo::new(storage, shading[0])?;
+    let mut demo = Demo::new(&mut storage.meshes, &mut storage.table, shading[0])?;
     demo.set_shading(Object::Sphere, shading[0]);
     demo.set_shading(Object::Torus, shading[1]);
     Ok(demo)

@@ -238,7 +238,8 @@ fn the_pareto_front_and_the_recommendation() {
 fn the_demo_scene_file_counts_what_the_board_demo_draws() {
     use arealight::raster::{Band, Rgb565};
     let mut buffers = Box::new(demo_scene::MeshBuffers::<f32>::new());
-    let mut demo = demo_scene::Demo::new(&mut buffers, Shading::Gouraud).unwrap();
+    let mut table = Box::new(arealight::raster::EncodeTable::zeroed());
+    let mut demo = demo_scene::Demo::new(&mut buffers, &mut table, Shading::Gouraud).unwrap();
     let (mut px, mut depth) = (
         vec![Rgb565(0); demo_scene::BAND_PIXELS],
         vec![0u16; demo_scene::BAND_PIXELS],

@@ -16,7 +16,7 @@ use defmt_rtt as _;
 // ... and the panic handler: prints the panic message through defmt, then halts the core.
 use panic_probe as _;
 
-use arealight::raster::{Band, Rgb565, Shading};
+use arealight::raster::{Band, EncodeTable, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
 use demo_scene::{Demo, MeshBuffers, Output, Stage, BACKGROUND, HEIGHT, PERIOD, WIDTH};
@@ -44,8 +44,9 @@ use static_cell::ConstStaticCell;
 #[used]
 pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 
-/// The scene's meshes, per-frame vertex data and gamma table (see step 9).
+/// The scene's meshes and per-frame vertex data, and its gamma table (see step 9).
 static BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> = ConstStaticCell::new(MeshBuffers::new());
+static TABLE: ConstStaticCell<EncodeTable> = ConstStaticCell::new(EncodeTable::zeroed());
 
 /// Rows per band: 60, four bands per frame. Taller bands than the scene's default 16 mean fewer
 /// triangles set up twice (once per band they cross) and fewer passes over the meshes: 8 %
@@ -162,13 +163,13 @@ fn run() -> ! {
     let mut display = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
 
     // 9. The scene (shared with the STM32F411 firmware: boards/demo-scene). Its meshes (a
-    //    UV sphere and a torus), their per-frame vertex data and the gamma table (about
-    //    64 KiB) live in a static buffer, filled once; the camera, materials and draw options
-    //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
-    //    stack, which 64 KiB would overflow on the second core's firmware); `take` hands out
-    //    its `&'static mut` once.
+    //    UV sphere and a torus) and their per-frame vertex data (60 KiB), and the gamma table
+    //    (16 KiB) live in statics, filled once; the camera, materials and draw options are set
+    //    once. `BUFFERS` and `TABLE` are initialized at link time (all zeros: no copy through
+    //    the stack, which 60 KiB would overflow on the second core's firmware); `take` hands
+    //    out their `&'static mut` once.
     let buffers = BUFFERS.take();
-    let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
+    let mut demo = Demo::<Fixed22>::new(buffers, TABLE.take(), SHADING).unwrap();
 
     // 10. One band: 240x60 RGB565 pixels and their 16-bit depths (28 KiB each). The whole
     //     frame is rendered through it, 4 times per frame.

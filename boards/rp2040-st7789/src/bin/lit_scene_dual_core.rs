@@ -90,7 +90,7 @@ use panic_probe as _;
 
 use core::cell::RefCell;
 
-use arealight::raster::{Band, DrawStats, Rgb565, Shading};
+use arealight::raster::{Band, DrawStats, EncodeTable, Rgb565, Shading};
 use arealight::Fixed22;
 use cortex_m::singleton;
 use critical_section::Mutex;
@@ -133,12 +133,14 @@ const BANDS: u16 = HEIGHT.div_ceil(BAND_ROWS);
 // 6 658 670 with 16 rows.)
 const _: () = assert!(BANDS <= 16, "a band is a bit of a u16 mask");
 
-/// Each core's meshes, per-frame vertex data and gamma table (about 64 KiB each), initialized
-/// at link time (all zeros: no copy through a stack).
+/// Each core's meshes and per-frame vertex data (60 KiB each), and the gamma table both
+/// cores draw through (16 KiB: core 0 fills it, then both only read it), initialized at link
+/// time (all zeros: no copy through a stack).
 static CORE0_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
     ConstStaticCell::new(MeshBuffers::new());
 static CORE1_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
     ConstStaticCell::new(MeshBuffers::new());
+static TABLE: ConstStaticCell<EncodeTable> = ConstStaticCell::new(EncodeTable::zeroed());
 
 /// Core 1's stack, in words: 16 KiB (the meshes, per-frame data and bands are statics; the stack holds
 /// the rasterizer's clipping buffers, a frame's lights and the light models' locals).
@@ -645,8 +647,8 @@ fn send(sender: &mut Sender, band: &mut Band<'static, Rgb565>, k: u16) {
 
 /// Core 1: draws and sends bands of each frame core 0 asks for, from the front of the list
 /// (its share, cheapest first).
-fn core1(buffers: &'static mut MeshBuffers<Fixed22>) {
-    let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
+fn core1(buffers: &'static mut MeshBuffers<Fixed22>, table: &'static EncodeTable) {
+    let mut demo = Demo::<Fixed22>::sharing(buffers, table, SHADING).unwrap();
     // Core 1's band and depth band, in statics like core 0's (7.5 KiB each).
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
@@ -774,19 +776,25 @@ fn run() -> ! {
     let display: Sender = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
     critical_section::with(|cs| *SENDER.borrow_ref_mut(cs) = Some(display));
 
-    // 9. Core 1: its meshes and per-frame data (statics, handed to it), its stack, and its
-    //    program (`core1`, which builds its own `Demo` from them). The power-on state machine
-    //    (PSM) and the FIFO between the cores are used once, to start it.
+    // 9. Core 0's own scene, as in `lit_scene.rs`, which fills the gamma table.
+    let buffers = CORE0_BUFFERS.take();
+    let mut demo = Demo::<Fixed22>::new(buffers, TABLE.take(), SHADING).unwrap();
+    let table = demo.table();
+
+    // 10. Core 1: its meshes and per-frame data (statics, handed to it) and the filled gamma
+    //    table (shared), its stack, and its program (`core1`, which builds its own `Demo` from
+    //    them). The power-on state machine (PSM) and the FIFO between the cores are used
+    //    once, to start it.
     let core1_buffers = CORE1_BUFFERS.take();
     let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
     let cores = multicore.cores();
     cores[1]
-        .spawn(CORE1_STACK.take().unwrap(), move || core1(core1_buffers))
+        .spawn(CORE1_STACK.take().unwrap(), move || {
+            core1(core1_buffers, table)
+        })
         .unwrap();
 
-    // 10. Core 0's own scene and band, as in `lit_scene.rs`.
-    let buffers = CORE0_BUFFERS.take();
-    let mut demo = Demo::<Fixed22>::new(buffers, SHADING).unwrap();
+    // Core 0's band.
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut own = Some(Band::new(pixels, Some(depth), WIDTH, 0).unwrap());

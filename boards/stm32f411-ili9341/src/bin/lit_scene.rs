@@ -17,7 +17,7 @@ use defmt_rtt as _;
 // ... and the panic handler: prints the panic message through defmt, then halts the core.
 use panic_probe as _;
 
-use arealight::raster::{Band, Rgb565, Shading};
+use arealight::raster::{Band, EncodeTable, Rgb565, Shading};
 use cortex_m::peripheral::DWT;
 use cortex_m::singleton;
 use cortex_m_rt::entry;
@@ -41,8 +41,9 @@ use stm32f4xx_hal::{pac, prelude::*, rcc::Config};
 /// README.md for both, measured).
 const SHADING: Shading = Shading::Gouraud;
 
-/// The scene's meshes, per-frame vertex data and gamma table (see step 9).
+/// The scene's meshes and per-frame vertex data, and its gamma table (see step 9).
 static BUFFERS: ConstStaticCell<MeshBuffers<f32>> = ConstStaticCell::new(MeshBuffers::new());
+static TABLE: ConstStaticCell<EncodeTable> = ConstStaticCell::new(EncodeTable::zeroed());
 
 /// The core clock: the F411's maximum (from the Black Pill's 25 MHz crystal).
 const SYSCLK_MHZ: u32 = 100;
@@ -118,13 +119,13 @@ fn main() -> ! {
     backlight.set_high();
 
     // 9. The scene (shared with the RP2040 firmware: boards/demo-scene). Its meshes (a UV
-    //    sphere and a torus), their per-frame vertex data and the gamma table (about
-    //    60 KiB) live in a static buffer, filled once; the camera, materials and draw options
-    //    are set once. `BUFFERS` is initialized at link time (all zeros: no copy through the
-    //    stack, which would need more than the F411's 128 KiB at start-up); `take` hands out
-    //    its `&'static mut` once.
+    //    sphere and a torus) and their per-frame vertex data (60 KiB), and the gamma table
+    //    (16 KiB) live in statics, filled once; the camera, materials and draw options are set
+    //    once. `BUFFERS` and `TABLE` are initialized at link time (all zeros: no copy through
+    //    the stack, which would need more than the F411's 128 KiB at start-up); `take` hands
+    //    out their `&'static mut` once.
     let buffers = BUFFERS.take();
-    let mut demo = Demo::<f32>::new(buffers, SHADING).unwrap();
+    let mut demo = Demo::<f32>::new(buffers, TABLE.take(), SHADING).unwrap();
 
     // 10. One band: 240x16 RGB565 pixels and their 16-bit depths (7.5 KiB each). The whole
     //     frame is rendered through it, 15 times per frame.
