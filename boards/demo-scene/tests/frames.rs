@@ -352,3 +352,19 @@ fn a_carried_last_band_gives_the_frames_of_render_frame() {
         }
     }
 }
+
+#[test]
+fn sharing_refuses_a_table_no_demo_filled() {
+    let mut buffers = Box::new(MeshBuffers::<Fixed22>::new());
+    let zeroed = Box::new(EncodeTable::zeroed());
+    assert!(matches!(
+        Demo::sharing(&mut buffers, &zeroed, Shading::Gouraud),
+        Err(arealight::raster::RasterError::BadParameter("table"))
+    ));
+    // A filled one is taken, and drawn through as the filling scene draws.
+    let mut table = Box::new(EncodeTable::zeroed());
+    let mut other = Box::new(MeshBuffers::<Fixed22>::new());
+    let first = Demo::new(&mut other, &mut table, Shading::Gouraud).unwrap();
+    let second = Demo::sharing(&mut buffers, first.table(), Shading::Gouraud).unwrap();
+    assert!(core::ptr::eq(first.table(), second.table()));
+}
