@@ -361,7 +361,7 @@ fn sharing_refuses_a_table_no_demo_filled() {
         Demo::sharing(&mut buffers, &zeroed, Shading::Gouraud),
         Err(arealight::raster::RasterError::BadParameter("table"))
     ));
-    // A filled one is taken, and drawn through as the filling scene draws.
+    // A filled one is taken: the second scene draws through the first one's table.
     let mut table = Box::new(EncodeTable::zeroed());
     let mut other = Box::new(MeshBuffers::<Fixed22>::new());
     let first = Demo::new(&mut other, &mut table, Shading::Gouraud).unwrap();
