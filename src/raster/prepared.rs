@@ -21,7 +21,9 @@
 //!    a few products; all in 32-bit integers for a triangle of display size, exactly as the
 //!    64-bit fallback), then per covered pixel one
 //!    multiply-add per attribute, a depth compare, and (Gouraud) three loads from an
-//!    [`EncodeTable`](super::EncodeTable). No division and no `T` arithmetic per pixel in Gouraud mode.
+//!    [`EncodeTable`](super::EncodeTable), with no range test where the triangle's vertex
+//!    colours keep every pixel within the table's guards (`gouraud` module). No division and
+//!    no `T` arithmetic per pixel in Gouraud mode.
 //!
 //! The attribute values at a pixel depend only on the triangle and the pixel (the plane is
 //! anchored at the triangle's own bounding box, not at the band), so a band gets exactly its
