@@ -12,8 +12,8 @@
 //! biased and scaled so that each value's top 13 bits are its slot (one shift and one load a
 //! channel), and the pixels are those of the clamped lookup, bit for bit. Other triangles
 //! take the clamp. On the RP2040 demo (rp2040js, frames 1 to 15) every triangle but a few
-//! highlights is guarded: one core 8 100 916 -> 7 922 532 cycles, two cores 4 669 747 ->
-//! 4 604 253.
+//! highlights is guarded: one core 8 100 916 -> 7 925 968 cycles, two cores 4 669 747 ->
+//! 4 604 248.
 
 use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
 use super::scan::{depth16, Geometry, Plane, COLOUR_FRAC};

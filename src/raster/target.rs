@@ -347,7 +347,7 @@ pub(crate) const ENCODE_GUARD: usize = (ENCODE_SLOTS - ENCODE_ENTRIES) / 2;
 /// channels' bits, which saves the per-pixel rounding), the same pixels as from the levels.
 /// Size: 16 KiB (2^13 16-bit slots: the 4097 entries between copies of the first and the
 /// last, which let the Gouraud span loop index most triangles' pixels without the clamp:
-/// RP2040 demo, rp2040js frames 1 to 15, one core 8 100 916 -> 7 922 532 cycles); build it
+/// RP2040 demo, rp2040js frames 1 to 15, one core 8 100 916 -> 7 925 968 cycles); build it
 /// once (`static`, `singleton!` or `main`'s frame) and share it between draw calls. Cost to
 /// build: 4097 [`Encoding::encode`] calls and the copies.
 #[derive(Clone, Debug, PartialEq, Eq)]
