@@ -266,12 +266,19 @@ impl<'a, T: Real> Demo<'a, T> {
         table: &'a mut EncodeTable,
         shading: Shading,
     ) -> Result<Self, RasterError> {
-        table.fill::<T>(ENCODING);
+        Self::fill_table(table);
         Self::build(buffers, table, shading)
     }
 
-    /// [`Demo::new`] with an encoding table another `Demo` filled ([`Demo::table`]), shared:
-    /// the two cores of the RP2040 firmware draw through one table (16 KiB).
+    /// Fills `table` with the scene's encoding (gamma 2, in `T`'s own arithmetic), for
+    /// [`Demo::sharing`]: [`Demo::new`] does this, then builds the scene.
+    pub fn fill_table(table: &mut EncodeTable) {
+        table.fill::<T>(ENCODING);
+    }
+
+    /// [`Demo::new`] with an encoding table already filled ([`Demo::fill_table`], or another
+    /// `Demo`'s: [`Demo::table`]), shared: the two cores of the RP2040 firmware draw through
+    /// one table (16 KiB).
     ///
     /// # Errors
     /// [`RasterError::BadParameter`] (`"table"`) for a table not filled with the scene's

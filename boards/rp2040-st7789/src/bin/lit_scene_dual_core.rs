@@ -776,15 +776,15 @@ fn run() -> ! {
     let display: Sender = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
     critical_section::with(|cs| *SENDER.borrow_ref_mut(cs) = Some(display));
 
-    // 9. Core 0's own scene, as in `lit_scene.rs`, which fills the gamma table.
-    let buffers = CORE0_BUFFERS.take();
-    let mut demo = Demo::<Fixed22>::new(buffers, TABLE.take(), SHADING).unwrap();
-    let table = demo.table();
+    // 9. The gamma table both cores draw through, filled once (then only read).
+    let table = TABLE.take();
+    Demo::<Fixed22>::fill_table(table);
+    let table: &'static EncodeTable = table;
 
-    // 10. Core 1: its meshes and per-frame data (statics, handed to it) and the filled gamma
-    //    table (shared), its stack, and its program (`core1`, which builds its own `Demo` from
-    //    them). The power-on state machine (PSM) and the FIFO between the cores are used
-    //    once, to start it.
+    // 10. Core 1: its meshes and per-frame data (statics, handed to it) and the shared table,
+    //    its stack, and its program (`core1`, which builds its own `Demo` from them while core
+    //    0 builds its own). The power-on state machine (PSM) and the FIFO between the cores
+    //    are used once, to start it.
     let core1_buffers = CORE1_BUFFERS.take();
     let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
     let cores = multicore.cores();
@@ -794,12 +794,14 @@ fn run() -> ! {
         })
         .unwrap();
 
-    // Core 0's band.
+    // 11. Core 0's own scene and band, as in `lit_scene.rs`.
+    let buffers = CORE0_BUFFERS.take();
+    let mut demo = Demo::<Fixed22>::sharing(buffers, table, SHADING).unwrap();
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut own = Some(Band::new(pixels, Some(depth), WIDTH, 0).unwrap());
 
-    // 11. Each frame: split the bands by the last frame's cost and tell core 1 to start, then
+    // 12. Each frame: split the bands by the last frame's cost and tell core 1 to start, then
     //     draw the first band, the bands from the back of the list (most expensive first),
     //     and the last band, sending each. The first band is sent first and the last band
     //     last (core 1 sends only after the first; an empty last band goes out early in the
