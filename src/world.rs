@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 81 | 211 | 857 | 1054 | 717 | 848 |
-//! | `sphere_lambert_hermite` | 94 | 225 | 863 | 1069 | 716 | 860 |
+//! | `sphere_lambert` | 76 | 206 | 857 | 1054 | 717 | 848 |
+//! | `sphere_lambert_hermite` | 83 | 214 | 859 | 1066 | 713 | 857 |
 //! | `polygon_lambert` | 496 | 1088 | 3832 | 4442 | 3008 | 3413 |
-//! | `phong_sphere` | 483 | 604 | 5069 | 5116 | 4050 | 4178 |
-//! | `phong_polygon` | 1844 | 2572 | 11861 | 12683 | 7874 | 8356 |
+//! | `phong_sphere` | 480 | 601 | 5069 | 5116 | 4050 | 4178 |
+//! | `phong_polygon` | 1839 | 2567 | 11861 | 12683 | 7874 | 8356 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole
