@@ -4,8 +4,9 @@
 //! A Gouraud pixel's colour is three attribute planes' values, each an index into the
 //! [`EncodeTable`] with `SHIFT` more fraction bits. The table's clamp (an index below 0 or
 //! above 4096 takes the end entry) costs a comparison and a branch a channel, with their
-//! constants, in the span loop. The table holds copies of its end entries either side
-//! (`ENCODE_GUARD`: 2^13 slots in all, 16 KiB), so indices in `[-2047, 6144]` need no clamp.
+//! constants, in the span loop. With the `encode-guards` feature the table holds copies of its
+//! end entries either side (`ENCODE_GUARD`: 2^13 slots in all, 16 KiB), so indices in
+//! `[-2047, 6144]` need no clamp.
 //! A triangle whose vertex colours are at most `GUARDED_COLOUR_MAX` (1.44, after the
 //! exposure) and whose extent is under `GUARDED_EXTENT` pixels has every covered pixel's
 //! value within `GUARD_MARGIN` of its vertices' range, so within the guards: its planes are
@@ -17,8 +18,20 @@
 
 use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
 use super::scan::{depth16, Geometry, Plane, COLOUR_FRAC};
-use super::target::{Band, EncodeTable, PixelFormat, ENCODE_GUARD, ENCODE_INDEX_BITS};
+use super::target::{
+    Band, EncodeTable, PixelFormat, ENCODE_GUARD, ENCODE_GUARDS, ENCODE_INDEX_BITS,
+};
 use super::DrawStats;
+
+/// Whether the Gouraud span loop takes guarded triangles without the clamp: with the table's
+/// guards (`encode-guards`), on ARMv6-M (the Cortex-M0+ of the RP2040: rp2040js frames 1 to
+/// 15, one core 8 100 916 -> 7 925 968 cycles), where the clamp's comparisons and constants
+/// cost the span loop registers it does not have. Elsewhere the clamped loop alone: on the
+/// Cortex-M4F the guarded one measured no faster, and the STM32F411 Gouraud frame 0 (QEMU)
+/// took 2 811 206 instructions with the 16 KiB table and both loops against 2 779 784 with
+/// the 8 KiB table and the clamped loop (2 772 886 before the guards).
+pub(super) const GUARDED_SPANS: bool =
+    ENCODE_GUARDS && cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// A covered pixel's Gouraud colour with [`COLOUR_FRAC`] fraction bits as an [`EncodeTable`]
 /// index (`>> SHIFT`).
@@ -88,7 +101,7 @@ impl<P: PixelFormat> Spans<'_, P> {
         band: &mut Band<'_, P>,
         stats: &mut DrawStats,
     ) {
-        let (depth, yb, table) = (&self.depth, self.yb, self.table);
+        let (depth, yb, table) = (self.depth, self.yb, self.table);
         let pixel = move |r: i32, g: i32, b: i32| {
             if GUARDED {
                 table.pixel_guarded(r as u32, g as u32, b as u32)

@@ -4,7 +4,7 @@
 //! docs for what is computed and what it costs).
 
 use super::edge::{EdgeTriangle, FixedPoint, SUBPIXEL};
-use super::gouraud::{is_guarded, Spans};
+use super::gouraud::{is_guarded, Spans, GUARDED_SPANS};
 use super::prepared::PreparedVertex;
 use super::shade::{Shader, Shading};
 use super::target::{Band, EncodeTable, PixelFormat, ENCODE_INDEX_BITS};
@@ -295,7 +295,8 @@ pub(super) fn raster<T, P, S>(
             let mut planes: [Plane; 3] = core::array::from_fn(|k| {
                 Plane::new([v[0].colour[k], v[1].colour[k], v[2].colour[k]], &geo)
             });
-            let guarded = is_guarded(&fp, &geo, [&v[0].colour, &v[1].colour, &v[2].colour]);
+            let guarded =
+                GUARDED_SPANS && is_guarded(&fp, &geo, [&v[0].colour, &v[1].colour, &v[2].colour]);
             let spans = Spans {
                 depth,
                 yb,

@@ -316,11 +316,18 @@ pub fn encode_pixel<T: Real, P: PixelFormat>(c: Rgb<T>, exposure: T, enc: Encodi
 pub const ENCODE_INDEX_BITS: u32 = 12;
 /// Entries of an [`EncodeTable`]: indices `0..=4096`.
 pub const ENCODE_ENTRIES: usize = (1 << ENCODE_INDEX_BITS) + 1;
-/// The slots of an [`EncodeTable`]: the 4097 entries at `ENCODE_GUARD..`, after copies of the
-/// first and before copies of the last, 2^13 in all, so that the 13 bits
-/// [`EncodeTable::pixel_guarded`] takes from a value always index a slot.
-const ENCODE_SLOTS: usize = 1 << (ENCODE_INDEX_BITS + 1);
-/// The slot of index 0: the copies of entry 0 before it.
+/// Whether an [`EncodeTable`] has its guards (the `encode-guards` feature; always in the
+/// crate's own unit tests, which check the guarded span loop against the clamped one).
+pub(crate) const ENCODE_GUARDS: bool = cfg!(any(feature = "encode-guards", test));
+/// The slots of an [`EncodeTable`]: with the guards, the 4097 entries at `ENCODE_GUARD..`,
+/// after copies of the first and before copies of the last, 2^13 in all, so that the 13 bits
+/// [`EncodeTable::pixel_guarded`] takes from a value always index a slot; without, the entries.
+const ENCODE_SLOTS: usize = if ENCODE_GUARDS {
+    1 << (ENCODE_INDEX_BITS + 1)
+} else {
+    ENCODE_ENTRIES
+};
+/// The slot of index 0: the copies of entry 0 before it (none without the guards).
 pub(crate) const ENCODE_GUARD: usize = (ENCODE_SLOTS - ENCODE_ENTRIES) / 2;
 
 /// An [`Encoding`] tabulated once: linear colour (after the exposure) in steps of 1/4096 to
@@ -345,11 +352,12 @@ pub(crate) const ENCODE_GUARD: usize = (ENCODE_SLOTS - ENCODE_ENTRIES) / 2;
 /// A table is for one pixel format `P` (the bands it draws into): each entry is the level in
 /// `P`'s form ([`PixelFormat::table_entry`]; for [`Rgb565`] the level already rounded to its
 /// channels' bits, which saves the per-pixel rounding), the same pixels as from the levels.
-/// Size: 16 KiB (2^13 16-bit slots: the 4097 entries between copies of the first and the
-/// last, which let the Gouraud span loop index most triangles' pixels without the clamp:
-/// RP2040 demo, rp2040js frames 1 to 15, one core 8 100 916 -> 7 925 968 cycles); build it
-/// once (`static`, `singleton!` or `main`'s frame) and share it between draw calls. Cost to
-/// build: 4097 [`Encoding::encode`] calls and the copies.
+/// Size: 8 KiB (4097 16-bit entries); with the `encode-guards` feature 16 KiB (2^13 slots: the
+/// entries between copies of the first and the last, which let the Gouraud span loop on
+/// ARMv6-M index most triangles' pixels without the clamp: RP2040 demo, rp2040js frames 1 to
+/// 15, one core 8 100 916 -> 7 925 968 cycles). Build it once (`static`, `singleton!` or
+/// `main`'s frame) and share it between draw calls. Cost to build: 4097
+/// [`Encoding::encode`] calls (and the copies).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EncodeTable<P: PixelFormat = Rgb565> {
     encoding: Encoding,
@@ -430,10 +438,12 @@ impl<P: PixelFormat> EncodeTable<P> {
     /// index plus `ENCODE_GUARD` (the guards' slots first): the same pixel as
     /// [`EncodeTable::pixel`] of the index `(v >> 19) - ENCODE_GUARD`, the guards giving the
     /// clamp's entries for indices in `[-2047, 6144]`. No comparison and no mask: a shift
-    /// and a load a channel.
+    /// and a load a channel. (Only with the guards: without, a slot beyond the table reads
+    /// 0.)
     #[inline(always)]
     pub(crate) fn pixel_guarded(&self, r: u32, g: u32, b: u32) -> P {
-        let at = |v: u32| self.slots[(v >> 19) as usize];
+        // (With the guards `v >> 19` is below the table's length: no bounds test is left.)
+        let at = |v: u32| self.slots.get((v >> 19) as usize).copied().unwrap_or(0);
         P::from_entries(at(r), at(g), at(b))
     }
 }

@@ -114,8 +114,9 @@ const LAMP_HEIGHT: f64 = 0.75;
 /// The caller's storage for the scene (no allocation): a unit UV sphere (the big sphere), a
 /// coarser one (the lamp, scaled down) and a torus, their per-frame vertex data (one
 /// [`PreparedVertex`] per vertex, one [`TriangleRows`] per triangle, the sphere's kept
-/// [`LightSums`]): 61 584 bytes with `f32` or `Fixed22` (the encoding table, 16 390 bytes, is
-/// apart: [`Demo::new`], which two cores can share, [`Demo::sharing`]). Put it in a `static` initialized at link time (it is
+/// [`LightSums`]): 61 584 bytes with `f32` or `Fixed22` (the encoding table, 8 200 bytes or
+/// 16 390 with arealight's `encode-guards`, is apart: [`Demo::new`]; two cores can share it,
+/// [`Demo::sharing`]). Put it in a `static` initialized at link time (it is
 /// `const`: e.g. `static_cell::ConstStaticCell`) or on the heap; [`Demo::new`] fills it.
 pub struct MeshBuffers<T> {
     sphere_vertices: [Vertex<T>; SPHERE_VERTICES],
@@ -278,7 +279,7 @@ impl<'a, T: Real> Demo<'a, T> {
 
     /// [`Demo::new`] with an encoding table already filled ([`Demo::fill_table`], or another
     /// `Demo`'s: [`Demo::table`]), shared: the two cores of the RP2040 firmware draw through
-    /// one table (16 KiB).
+    /// one table (16 KiB with its guards).
     ///
     /// # Errors
     /// [`RasterError::BadParameter`] (`"table"`) for a table not filled with the scene's

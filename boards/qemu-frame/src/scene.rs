@@ -22,7 +22,7 @@ pub const MODES: [(&str, [Shading; 2]); 3] = [
 ];
 
 /// The storage a [`Demo`] borrows: the meshes and their per-frame data (61 584 bytes in
-/// `f32`) and the encoding table (16 390 bytes). The firmware keeps it in a `static` with the
+/// `f32`) and the encoding table (8 200 bytes). The firmware keeps it in a `static` with the
 /// constant initializer `Storage::new()`.
 pub struct Storage {
     meshes: MeshBuffers<f32>,
