@@ -30,7 +30,7 @@ fn budget(args: &[&str], out: &Path) -> Output {
 #[test]
 fn writes_the_table_the_csv_and_the_plot_and_answers_the_question() {
     let dir = scratch("files");
-    let out = budget(&["--chip", "rp2040", "--fps", "30"], &dir);
+    let out = budget(&["--chip", "rp2040", "--fps", "40"], &dir);
     assert!(
         out.status.success(),
         "{}",
@@ -46,8 +46,9 @@ fn writes_the_table_the_csv_and_the_plot_and_answers_the_question() {
             p.display()
         );
     }
-    // The demo does not reach 30 fps on one RP2040 core: the answer says so and by how much.
-    assert!(stdout.contains("Nothing meets 30 fps."), "{stdout}");
+    // The demo does not reach 40 fps on one RP2040 core, not even with its meshes halved (30
+    // fps it does, since the colour table's guards): the answer says so and by how much.
+    assert!(stdout.contains("Nothing meets 40 fps."), "{stdout}");
     let csv = std::fs::read_to_string(dir.join("demo-rp2040.csv")).unwrap();
     let first = csv.lines().nth(1).unwrap();
     assert!(
