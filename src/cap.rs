@@ -276,7 +276,7 @@ impl<T: Real> CapLight<T> {
     ///
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
-    /// the fillet (out of line) also 1 sqrt and 2 atan2: median 47 instructions a call on the
+    /// the fillet (out of line) also 1 sqrt and 2 atan2: median 44 instructions a call on the
     /// Cortex-M4F in f32, 28 with a `UnitVec3`; 400 and 118 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact; 52 and 33, 405 and 120 with the fully lit term clamped at both ends;
     /// 449 and 163 with its products' saturation tests).
@@ -331,8 +331,8 @@ impl<T: Real> CapLight<T> {
     ///
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and the chord's squared length
     /// `|n - axis|^2` (`c = 1 - |n - axis|^2/2`, accurate near 1); only in the fillet (out of
-    /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 59 instructions a call
-    /// on the Cortex-M4F in f32, 39 with a `UnitVec3`; 444 and 156 on the Cortex-M0 in
+    /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 50 instructions a call
+    /// on the Cortex-M4F in f32, 33 with a `UnitVec3`; 444 and 158 on the Cortex-M0 in
     /// `Fixed22` (QEMU, exact; before the fillet test, 179/158 and 1499/1167).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
@@ -516,8 +516,8 @@ impl<T: Real> SphereLight<T> {
     ///
     /// Accuracy: measured, below. Cost: 2 normalizations, 1 division (fixed point: no
     /// division, `sin sigma` from the normalization's reciprocal square root); in the
-    /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 81 instructions a call on the
-    /// Cortex-M4F in f32, 73 with a `UnitVec3`; 857 and 571 on the Cortex-M0 in `Fixed22`
+    /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 76 instructions a call on the
+    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 857 and 571 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact). Fallback: 0 for a point inside or on the sphere, or a zero or
     /// non-finite input.
     ///

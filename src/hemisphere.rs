@@ -50,7 +50,7 @@ impl<T: Real> HemisphereLight<T> {
     /// hemisphere, `(1 + n.axis)/2` (Snyder eq. 4).
     ///
     /// Accuracy: 2 ULP plus the normalization of `n`. Cost: 1 normalization (none for a
-    /// [`UnitVec3`]), 1 dot product: 47 instructions a call on the Cortex-M4F
+    /// [`UnitVec3`]), 1 dot product: 44 instructions a call on the Cortex-M4F
     /// in f32, 30 with a `UnitVec3`; 376 and 94 on the Cortex-M0 in `Fixed22` (QEMU, exact).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
@@ -203,7 +203,7 @@ impl<T: Real> SkyGround<T> {
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`. Cost: 1
     /// normalization (none for a [`UnitVec3`]), 1 dot product, 3 multiply-adds:
-    /// 62 instructions a call on the Cortex-M4F in f32, 45 with a `UnitVec3`; 456 and 170 on
+    /// 59 instructions a call on the Cortex-M4F in f32, 45 with a `UnitVec3`; 456 and 170 on
     /// the Cortex-M0 in `Fixed22` (QEMU, exact: the products by `c` skip the saturation test
     /// that a factor of at most 1 never needs, through the crate-internal `mul_unit`; and the
     /// finiteness test of the result is skipped for radiances within 1e30, which cannot

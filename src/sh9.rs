@@ -288,7 +288,7 @@ impl<T: Real> Sh9Irradiance<T> {
     /// Accuracy: a few ULPs of the largest coefficient. Cost: 1 normalization (none for a
     /// [`UnitVec3`](crate::UnitVec3)) and 24 multiply-adds (no finiteness test of the result
     /// when every channel's coefficients sum to at most 1e30 in magnitude, which cannot
-    /// overflow): 99 instructions a call on the Cortex-M4F in f32, 82 with a `UnitVec3`
+    /// overflow): 96 instructions a call on the Cortex-M4F in f32, 82 with a `UnitVec3`
     /// (QEMU, exact). Fallback: black for a zero or non-finite `n`.
     ///
     /// `Fixed22` evaluates each channel as one fused dot product of its nine coefficients with
