@@ -78,8 +78,8 @@
 //! shading, and each core takes its band back before drawing. Core 0 starts a frame once
 //! core 1 is done drawing the last one. Measured in rp2040js, frames 1 to 15: 4 579 100 ->
 //! 4 533 483 cycles a frame on average (frame 1: 4 560 394 -> 4 437 182); core 0's wait at
-//! the end of a frame went from about 990 us to 5, and part of it to its sends during the
-//! bands (the SPI's pacing).
+//! the end of a frame went from about 990 us to 4-6 in most frames (not 1, 5 to 7), and part
+//! of it to its sends during the bands (the SPI's pacing).
 #![no_std]
 #![no_main]
 // Every line here is safe Rust but two, each allowed where it is and explained there.
