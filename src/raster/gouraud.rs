@@ -220,9 +220,7 @@ mod tests {
                 continue;
             };
             let fp = tri.vertices();
-            let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
-            let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
-            let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+            let (xb, yb) = crate::raster::scan::anchor_pixel(&fp);
             let geo = Geometry::new(fp, tri.area2(), xb, yb);
             let mut colour = || match next() % 4 {
                 0 => 0,

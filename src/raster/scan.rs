@@ -283,11 +283,7 @@ pub(super) fn raster<T, P, S>(
     };
     stats.rasterized = stats.rasterized.wrapping_add(1);
     let fp = tri.vertices();
-    // The anchor: the first pixel centre at or right of / below the leftmost / topmost vertex
-    // (pixel i has its centre at 16 i + 8), independent of the band.
-    let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
-    let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
-    let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+    let (xb, yb) = anchor_pixel(&fp);
     let geo = Geometry::new(fp, tri.area2(), xb, yb);
     let depth = Plane::new([v[0].depth, v[1].depth, v[2].depth], &geo);
     match opts.shading {
@@ -366,6 +362,18 @@ pub(super) fn raster<T, P, S>(
     }
 }
 
+/// A triangle's anchor pixel `(xb, yb)` from its snapped vertices: the first pixel centre at
+/// or right of / below its leftmost / topmost vertex (pixel i has its centre at 16 i + 8),
+/// independent of the band.
+#[inline(always)]
+pub(super) fn anchor_pixel(fp: &[FixedPoint; 3]) -> (i32, i32) {
+    let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
+    (
+        first(fp[0].x.min(fp[1].x).min(fp[2].x)),
+        first(fp[0].y.min(fp[1].y).min(fp[2].y)),
+    )
+}
+
 /// A depth value with [`DEPTH_FRAC`] fraction bits as the band's 16 bits (clamped).
 #[inline(always)]
 pub(super) fn depth16(q: i32) -> u16 {
@@ -389,7 +397,7 @@ fn depth_out_of_range(z: i32) -> u16 {
 #[cfg(test)]
 mod tests {
     use super::{recip62, Geometry};
-    use crate::raster::edge::{Cull, EdgeTriangle, FixedPoint, SUBPIXEL};
+    use crate::raster::edge::{Cull, EdgeTriangle, FixedPoint};
 
     #[test]
     fn the_32_bit_geometry_equals_the_64_bit_one() {
@@ -409,9 +417,7 @@ mod tests {
                 continue;
             };
             let fp = t.vertices();
-            let first = |m: i32| (m - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL);
-            let xb = first(fp[0].x.min(fp[1].x).min(fp[2].x));
-            let yb = first(fp[0].y.min(fp[1].y).min(fp[2].y));
+            let (xb, yb) = super::anchor_pixel(&fp);
             let wide = Geometry::new_wide(fp, t.area2(), xb, yb);
             total += 1;
             if let Some(g) = Geometry::new_small(fp, t.area2(), xb, yb) {

@@ -359,13 +359,8 @@ mod tests {
                 }
             }
         }
-        let mut seed = 0x9E37_79B9u32;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            f64::from(seed) / f64::from(u32::MAX) * 2.0 - 1.0
-        };
+        let mut state = crate::test_rng::xorshift32(0x9E37_79B9);
+        let mut next = move || f64::from(state()) / f64::from(u32::MAX) * 2.0 - 1.0;
         let mut v64 = std::vec::Vec::new();
         for scale in [1.0, 1e-30, 1e-170, 1e30, 1e170, 1e300, 0.0] {
             for _ in 0..200 {
@@ -426,13 +421,8 @@ mod tests {
             }
             clamped
         }
-        let mut seed = 0x2545_F491u32;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            f64::from(seed) / f64::from(u32::MAX) * 2.0 - 1.0
-        };
+        let mut state = crate::test_rng::xorshift32(0x2545_F491);
+        let mut next = move || f64::from(state()) / f64::from(u32::MAX) * 2.0 - 1.0;
         let mut v32 = std::vec::Vec::new();
         let mut v64 = std::vec::Vec::new();
         for (scale32, scale64) in [(1.0, 1.0), (1e-30, 1e-170), (1e30, 1e170), (1.9e38, 1e308)] {
