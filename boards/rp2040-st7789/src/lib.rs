@@ -196,7 +196,8 @@ where
         }
         let buffer = fill(buffer);
         // A band shorter than the buffer (the last one, if the height were not a multiple
-        // of the band's rows) sends only its own pixels: there is none here (240 = 15 x 16).
+        // of the band's rows) sends only its own pixels: there is none here (240 = 12 x 20 with two
+        // cores, 4 x 60 with one).
         let words: &'static mut [u16] = bytemuck::cast_slice_mut(buffer);
         self.state = State::Sending(single_buffer::Config::new(ch, words, spi).start());
         Ok(())

@@ -57,7 +57,7 @@ pub const CHIPS: &[Chip] = &[
         what: "RP2040, both cores (lit_scene_dual_core: each transforms and shades half the vertices and draws bands from a common list, sending each itself)",
         mhz: 125.0,
         unit: "cycles",
-        band_rows: 16,
+        band_rows: 20,
         cores: 2,
         backends: &["fixed", "f32-fast", "f32"],
     },

@@ -29,7 +29,7 @@
 //!
 //! **Which core draws which band.** The bands' cost is very uneven (the three through the
 //! objects' middle take about 1 M cycles each, the empty ones 20 000), and every band takes
-//! the SPI 123 000 cycles to send, one at a time. Each core holds its drawn band until the SPI
+//! the SPI 154 000 cycles to send, one at a time. Each core holds its drawn band until the SPI
 //! is free, so a core drawing cheap bands is paced by the SPI, while one drawing an expensive
 //! band leaves the SPI idle. So the bands (but the first and the last) are split between the
 //! cores by their cost in the previous frame (triangle setups and pixels, from `DrawStats`; in
@@ -59,7 +59,7 @@
 //! the bands after it take 25.3 ms instead of 29.1 (per-band timings of a temporary log).
 //!
 //! **An empty last band is carried into the next frame.** Sending the last band waits for
-//! the transfer before it (up to 123 000 cycles), and when no object reaches the last band
+//! the transfer before it (up to 154 000 cycles), and when no object reaches the last band
 //! core 0 would be waiting there with nothing else to do. Such a band is instead sent in the
 //! next frame before anything of it, by core 1 between its shader calls once the sender is
 //! free ([`send_parked`]; by core 0 before its first band if core 1 has not): the display
@@ -68,7 +68,7 @@
 //! cycles a frame on average.
 //!
 //! **So are the last drawn bands, when the SPI is busy.** At the end of a frame the bands
-//! still to be sent queue for the SPI (123 000 cycles each) while both cores have nothing to
+//! still to be sent queue for the SPI (154 000 cycles each) while both cores have nothing to
 //! draw: core 0 waited about 990 us for core 1's last band to go out, then for its transfer,
 //! before it could send the last band. Now core 1 parks its final band of a frame instead of
 //! waiting when the sender is not free at once, and core 0 the last band when any band is
@@ -95,8 +95,8 @@ use arealight::Fixed22;
 use cortex_m::singleton;
 use critical_section::Mutex;
 use demo_scene::{
-    ColourExchange, Demo, Frame, MeshBuffers, ScreenExchange, VisibleExchange, BACKGROUND,
-    BAND_PIXELS, BAND_ROWS, HEIGHT, PERIOD, WIDTH,
+    ColourExchange, Demo, Frame, MeshBuffers, ScreenExchange, VisibleExchange, BACKGROUND, HEIGHT,
+    PERIOD, WIDTH,
 };
 use embedded_hal::digital::OutputPin;
 use embedded_hal_bus::spi::ExclusiveDevice;
@@ -124,7 +124,21 @@ const XTAL_FREQ_HZ: u32 = 12_000_000;
 /// Gouraud shading, as in `lit_scene.rs`.
 const SHADING: Shading = Shading::Gouraud;
 
-/// The bands of a frame (15 of 16 rows).
+/// Rows per band: 20, where the single-core firmware draws 60 and the other boards 16
+/// (`demo_scene::BAND_ROWS`). A triangle is set up once for each band it reaches, and the
+/// taller the bands the fewer they are; each core holds a band and a depth band, and three
+/// pixel buffers pass between the cores and the sender, five buffers of 9 600 bytes. Measured
+/// in rp2040js, frames 1 to 15 of `run.mjs --dual --frames 16` (cycles a frame on average):
+/// 4 522 497 with 16 rows (608 triangle setups in frame 1), 4 459 756 with 18 and 4 511 628
+/// with 22 (each with a shorter last band), 4 438 195 with 20 (571 setups), 4 453 508 with 24
+/// (frame 1 4 648 799: with ten bands the cores' shares end less evenly); with 30 rows the
+/// statics leave no room for core 0's stack.
+const BAND_ROWS: u16 = 20;
+/// Pixels of one band: 4 800 (9 600 bytes of RGB565, as many of depth).
+const BAND_PIXELS: usize = WIDTH as usize * BAND_ROWS as usize;
+const _: () = assert!(HEIGHT % BAND_ROWS == 0, "whole bands");
+
+/// The bands of a frame (12 of 20 rows).
 const BANDS: u16 = HEIGHT.div_ceil(BAND_ROWS);
 
 // The bands are bits of a `u16` (the empty bands sent early, `Handoff::early`, and core 1's
@@ -160,6 +174,7 @@ type Sender = BandSender<
     >,
     hal::gpio::Pin<hal::gpio::bank0::Gpio8, hal::gpio::FunctionSioOutput, hal::gpio::PullDown>,
     hal::gpio::Pin<hal::gpio::bank0::Gpio9, hal::gpio::FunctionSioOutput, hal::gpio::PullDown>,
+    BAND_PIXELS,
 >;
 
 /// What the two cores exchange.
@@ -219,7 +234,7 @@ struct Parked {
 
 /// Each core's parked band (index: the core), apart from [`HANDOFF`] for the same reason as
 /// [`SENDER`]. A frame's last bands would otherwise wait for the SPI: the transfer before them
-/// runs for up to 123 000 cycles after the last band is drawn, while both cores have nothing
+/// runs for up to 154 000 cycles after the last band is drawn, while both cores have nothing
 /// to do. Core 1 parks its final band of a frame when the sender is not free at once, and
 /// core 0 the last band when any band is parked or the sender is not free; both go out early
 /// in the next frame, in order (core 1's, then the last band), before anything of that
@@ -649,7 +664,7 @@ fn send(sender: &mut Sender, band: &mut Band<'static, Rgb565>, k: u16) {
 /// (its share, cheapest first).
 fn core1(buffers: &'static mut MeshBuffers<Fixed22>, table: &'static EncodeTable) {
     let mut demo = Demo::<Fixed22>::sharing(buffers, table, SHADING).unwrap();
-    // Core 1's band and depth band, in statics like core 0's (7.5 KiB each).
+    // Core 1's band and depth band, in statics like core 0's (9.4 KiB each).
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
     let mut own = Some(Band::new(pixels, Some(depth), WIDTH, 0).unwrap());
@@ -772,7 +787,7 @@ fn run() -> ! {
         embedded_hal::spi::MODE_0,
     );
     let dma = pac.DMA.split(&mut pac.RESETS);
-    let dma_buffer = singleton!(: DmaBuffer = [Rgb565(0); BAND_PIXELS]).unwrap();
+    let dma_buffer = singleton!(: DmaBuffer<BAND_PIXELS> = [Rgb565(0); BAND_PIXELS]).unwrap();
     let display: Sender = BandSender::new(dma.ch0, spi16, dma_buffer, dc, cs);
     critical_section::with(|cs| *SENDER.borrow_ref_mut(cs) = Some(display));
 
