@@ -51,7 +51,7 @@ static TABLE: ConstStaticCell<EncodeTable> = ConstStaticCell::new(EncodeTable::z
 /// Rows per band: 60, four bands per frame. Taller bands than the scene's default 16 mean fewer
 /// triangles set up twice (once per band they cross) and fewer passes over the meshes: 8 %
 /// fewer cycles per frame in rp2040js with 40 rows, for 45 KiB of band, depth and DMA buffers
-/// (the two-core firmware keeps 16-row bands: it has two of everything). Frames 1 to 15 of
+/// (the two-core firmware draws 20-row bands: it has two of everything). Frames 1 to 15 of
 /// `run.mjs --frames 16`, on average: 8 255 792 cycles with 40 rows, 8 181 631 with 48,
 /// 8 104 917 with 60 (84 KiB of buffers), 8 387 657 with 80 (the frame's last band, a third of
 /// it, then waits for the SPI), 8 057 912 with 120 (169 KiB: little left for the stack). It
