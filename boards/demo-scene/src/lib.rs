@@ -224,6 +224,14 @@ pub struct Frame<T> {
     transforms: [Affine<T>; 3],
 }
 
+/// A share's entries ([`ScreenExchange`]'s vertices, [`VisibleExchange`]'s triangle rows)
+/// spread to mesh order for `PreparedMesh::set_screen` and `set_visible`: item `i` of the
+/// share (`i = 2 j + core`) is entry `j = i >> 1`; the entries at the other indices are not
+/// taken.
+fn spread<X: Copy>(share: &[X], empty: X) -> impl Iterator<Item = X> + '_ {
+    (0..2 * share.len()).map(move |i| share.get(i >> 1).copied().unwrap_or(empty))
+}
+
 /// Whether vertex `i` is core `core`'s of `cores` (`i mod cores == core`): with two cores the
 /// low bit, no division (an ARMv6-M core has no divide instruction: each `%` by a number
 /// known only at run time is a library call, and the shares ask once per vertex several
@@ -524,16 +532,14 @@ impl<'a, T: Real> Demo<'a, T> {
         self.sphere_moved
     }
 
-    /// Writes the screen data of this core's share of the vertices into `exchange` (after
-    /// [`Demo::transform_share`] with the same `core` and `cores`; the other entries are left
-    /// for the other core to write).
-    pub fn export_screen(&self, exchange: &mut ScreenExchange<T>, core: usize, cores: usize) {
-        let ours = share(core, cores.max(1));
+    /// Writes the screen data of core `core`'s share of the vertices (of two cores: those of
+    /// index `core` modulo 2) into `exchange` (after [`Demo::transform_share`] with the same
+    /// `core` and 2 cores), in vertex order, for the other core to take.
+    pub fn export_screen(&self, exchange: &mut ScreenExchange<T>, core: usize) {
+        let core = core.min(1);
         let copy = |dst: &mut [VertexScreen<T>], src: &PreparedMesh<'_, '_, T>| {
-            for (i, (d, v)) in dst.iter_mut().zip(src.screen()).enumerate() {
-                if ours(i) {
-                    *d = v;
-                }
+            for (d, v) in dst.iter_mut().zip(src.screen().skip(core).step_by(2)) {
+                *d = v;
             }
         };
         if self.sphere_moved {
@@ -543,20 +549,22 @@ impl<'a, T: Real> Demo<'a, T> {
         copy(&mut exchange.lamp, &self.lamp);
     }
 
-    /// Takes from `exchange` the screen data of the vertices that core `core` of `cores`
+    /// Takes from `exchange` the screen data of the vertices that core `core` of two
     /// transformed (what it exported this frame).
-    pub fn import_screen(&mut self, exchange: &ScreenExchange<T>, core: usize, cores: usize) {
-        let cores = cores.max(1);
-        let theirs = share(core, cores);
+    pub fn import_screen(&mut self, exchange: &ScreenExchange<T>, core: usize) {
+        let theirs = share(core.min(1), 2);
         let camera = &self.camera;
         if self.sphere_moved {
-            self.sphere
-                .set_screen(camera, exchange.sphere.iter().copied(), theirs);
+            self.sphere.set_screen(
+                camera,
+                spread(&exchange.sphere, VertexScreen::EMPTY),
+                theirs,
+            );
         }
         self.torus
-            .set_screen(camera, exchange.torus.iter().copied(), theirs);
+            .set_screen(camera, spread(&exchange.torus, VertexScreen::EMPTY), theirs);
         self.lamp
-            .set_screen(camera, exchange.lamp.iter().copied(), theirs);
+            .set_screen(camera, spread(&exchange.lamp, VertexScreen::EMPTY), theirs);
     }
 
     /// The visible-vertex pass of the shading ([`PreparedMesh::find_visible_some`]) over this
@@ -582,25 +590,26 @@ impl<'a, T: Real> Demo<'a, T> {
         self.visible_shared.iter().filter(|&&s| s).count()
     }
 
-    /// Writes this core's visible-vertex marks and its triangles' rows into `exchange` (after
-    /// [`Demo::find_visible_share`] with the same `core` and `cores`; `core` is 0 or 1).
-    pub fn export_visible(&self, exchange: &mut VisibleExchange, core: usize, cores: usize) {
-        let ours = share(core, cores.max(1));
-        let slot = core.min(1);
+    /// Writes core `core`'s visible-vertex marks and its triangles' rows (of two cores: the
+    /// triangles of index `core` modulo 2) into `exchange` (after
+    /// [`Demo::find_visible_share`] with the same `core` and 2 cores), for the other core to
+    /// take.
+    pub fn export_visible(&self, exchange: &mut VisibleExchange, core: usize) {
+        let core = core.min(1);
         let objects: [(&PreparedMesh<'_, '_, T>, &mut [bool], &mut [TriangleRows]); 3] = [
             (
                 &self.sphere,
-                &mut exchange.marks[slot].sphere,
+                &mut exchange.marks.sphere,
                 &mut exchange.rows.sphere,
             ),
             (
                 &self.torus,
-                &mut exchange.marks[slot].torus,
+                &mut exchange.marks.torus,
                 &mut exchange.rows.torus,
             ),
             (
                 &self.lamp,
-                &mut exchange.marks[slot].lamp,
+                &mut exchange.marks.lamp,
                 &mut exchange.rows.lamp,
             ),
         ];
@@ -611,19 +620,20 @@ impl<'a, T: Real> Demo<'a, T> {
             for (d, m) in marks.iter_mut().zip(mesh.visible_marks()) {
                 *d = m;
             }
-            for (k, (d, r)) in rows.iter_mut().zip(mesh.triangle_rows()).enumerate() {
-                if ours(k) {
-                    *d = r;
-                }
+            for (d, r) in rows
+                .iter_mut()
+                .zip(mesh.triangle_rows().skip(core).step_by(2))
+            {
+                *d = r;
             }
         }
     }
 
-    /// Takes from `exchange` the marks and triangle rows that core `core` of `cores` wrote
-    /// this frame, completing each shared object's visible-vertex pass.
-    pub fn import_visible(&mut self, exchange: &VisibleExchange, core: usize, cores: usize) {
-        let theirs = share(core, cores.max(1));
-        let marks = &exchange.marks[core.min(1)];
+    /// Takes from `exchange` the marks and triangle rows that core `core` of two wrote this
+    /// frame, completing each shared object's visible-vertex pass.
+    pub fn import_visible(&mut self, exchange: &VisibleExchange, core: usize) {
+        let theirs = share(core.min(1), 2);
+        let marks = &exchange.marks;
         let rows = &exchange.rows;
         let camera = &self.camera;
         let [sphere, torus, lamp] = self.visible_shared;
@@ -632,7 +642,7 @@ impl<'a, T: Real> Demo<'a, T> {
                 camera,
                 self.lit[0].cull,
                 marks.sphere.iter().copied(),
-                rows.sphere.iter().copied(),
+                spread(&rows.sphere, TriangleRows::EMPTY),
                 theirs,
             );
         }
@@ -641,7 +651,7 @@ impl<'a, T: Real> Demo<'a, T> {
                 camera,
                 self.lit[1].cull,
                 marks.torus.iter().copied(),
-                rows.torus.iter().copied(),
+                spread(&rows.torus, TriangleRows::EMPTY),
                 theirs,
             );
         }
@@ -650,7 +660,7 @@ impl<'a, T: Real> Demo<'a, T> {
                 camera,
                 self.emissive.cull,
                 marks.lamp.iter().copied(),
-                rows.lamp.iter().copied(),
+                spread(&rows.lamp, TriangleRows::EMPTY),
                 theirs,
             );
         }
@@ -787,23 +797,24 @@ impl<'a, T: Real> Demo<'a, T> {
     }
 }
 
-/// The vertices' screen data of one frame, as two cores share them (see
-/// [`Demo::transform_share`]): each core writes its share, and reads the other's. 18 KiB in
-/// `Fixed22`.
+/// One core's share of the vertices' screen data of a frame, as two cores exchange them (see
+/// [`Demo::transform_share`]): the vertices of index `core` modulo 2, in order (entry `j` is
+/// vertex `2 j + core`). Each core writes its own and reads the other core's, so the two
+/// can copy at once (9 KiB each in `Fixed22`).
 #[derive(Clone, Debug)]
 pub struct ScreenExchange<T> {
-    sphere: [VertexScreen<T>; SPHERE_VERTICES],
-    torus: [VertexScreen<T>; TORUS_VERTICES],
-    lamp: [VertexScreen<T>; LAMP_VERTICES],
+    sphere: [VertexScreen<T>; SPHERE_VERTICES.div_ceil(2)],
+    torus: [VertexScreen<T>; TORUS_VERTICES.div_ceil(2)],
+    lamp: [VertexScreen<T>; LAMP_VERTICES.div_ceil(2)],
 }
 
 impl<T: Real> ScreenExchange<T> {
     /// All placeholders (a `const fn`, for a `static`; all zero bits).
     pub const fn new() -> Self {
         ScreenExchange {
-            sphere: [VertexScreen::EMPTY; SPHERE_VERTICES],
-            torus: [VertexScreen::EMPTY; TORUS_VERTICES],
-            lamp: [VertexScreen::EMPTY; LAMP_VERTICES],
+            sphere: [VertexScreen::EMPTY; SPHERE_VERTICES.div_ceil(2)],
+            torus: [VertexScreen::EMPTY; TORUS_VERTICES.div_ceil(2)],
+            lamp: [VertexScreen::EMPTY; LAMP_VERTICES.div_ceil(2)],
         }
     }
 }
@@ -840,12 +851,13 @@ impl Default for ColourExchange {
     }
 }
 
-/// One frame's visible-vertex pass, as two cores share it (see [`Demo::find_visible_share`]):
-/// each core writes its vertices' marks and its triangles' rows, and reads the other's. 4.8
-/// KiB.
+/// One core's share of a frame's visible-vertex pass, as two cores exchange them (see
+/// [`Demo::find_visible_share`]): its marks of every vertex and the rows of its triangles (of
+/// index `core` modulo 2, in order). Each core writes its own and reads the other core's, so
+/// the two can copy at once (2.5 KiB each).
 #[derive(Clone, Debug)]
 pub struct VisibleExchange {
-    marks: [VisibleMarks; 2],
+    marks: VisibleMarks,
     rows: ExchangedRows,
 }
 
@@ -857,28 +869,27 @@ struct VisibleMarks {
     lamp: [bool; LAMP_VERTICES],
 }
 
-/// Each object's triangle rows (each core writes its own triangles').
+/// Each object's rows of one core's triangles.
 #[derive(Clone, Debug)]
 struct ExchangedRows {
-    sphere: [TriangleRows; SPHERE_TRIANGLES],
-    torus: [TriangleRows; TORUS_TRIANGLES],
-    lamp: [TriangleRows; LAMP_TRIANGLES],
+    sphere: [TriangleRows; SPHERE_TRIANGLES.div_ceil(2)],
+    torus: [TriangleRows; TORUS_TRIANGLES.div_ceil(2)],
+    lamp: [TriangleRows; LAMP_TRIANGLES.div_ceil(2)],
 }
 
 impl VisibleExchange {
     /// Nothing marked, no rows (a `const fn`, for a `static`).
     pub const fn new() -> Self {
-        const MARKS: VisibleMarks = VisibleMarks {
-            sphere: [false; SPHERE_VERTICES],
-            torus: [false; TORUS_VERTICES],
-            lamp: [false; LAMP_VERTICES],
-        };
         VisibleExchange {
-            marks: [MARKS; 2],
+            marks: VisibleMarks {
+                sphere: [false; SPHERE_VERTICES],
+                torus: [false; TORUS_VERTICES],
+                lamp: [false; LAMP_VERTICES],
+            },
             rows: ExchangedRows {
-                sphere: [TriangleRows::EMPTY; SPHERE_TRIANGLES],
-                torus: [TriangleRows::EMPTY; TORUS_TRIANGLES],
-                lamp: [TriangleRows::EMPTY; LAMP_TRIANGLES],
+                sphere: [TriangleRows::EMPTY; SPHERE_TRIANGLES.div_ceil(2)],
+                torus: [TriangleRows::EMPTY; TORUS_TRIANGLES.div_ceil(2)],
+                lamp: [TriangleRows::EMPTY; LAMP_TRIANGLES.div_ceil(2)],
             },
         }
     }

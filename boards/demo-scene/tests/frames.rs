@@ -231,8 +231,8 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
         let first = Demo::new(&mut b0, &mut table, Shading::Gouraud).unwrap();
         let second = Demo::sharing(&mut b1, first.table(), Shading::Gouraud).unwrap();
         let mut cores = [first, second];
-        let mut screen = Box::new(ScreenExchange::<Fixed22>::new());
-        let mut visible = Box::new(VisibleExchange::new());
+        let mut screen = Box::new([ScreenExchange::<Fixed22>::new(), ScreenExchange::new()]);
+        let mut visible = Box::new([VisibleExchange::new(), VisibleExchange::new()]);
         let mut colours = Box::new([ColourExchange::new(), ColourExchange::new()]);
         for (i, n) in frames.into_iter().enumerate() {
             let mut fresh_buffers = Box::new(MeshBuffers::<Fixed22>::new());
@@ -244,22 +244,22 @@ fn a_demo_that_drew_earlier_frames_draws_each_frame_as_a_new_one() {
             let want = drawn(&fresh, &frame);
             for (k, demo) in cores.iter_mut().enumerate() {
                 demo.transform_share(&frame, k, 2);
-                demo.export_screen(&mut screen, k, 2);
+                demo.export_screen(&mut screen[k], k);
             }
             for (k, demo) in cores.iter_mut().enumerate() {
-                demo.import_screen(&screen, 1 - k, 2);
+                demo.import_screen(&screen[1 - k], 1 - k);
                 if share_visible {
                     // The torus's and the lamp's passes every frame, the sphere's (which
                     // stands still) in the first.
                     let due = if i == 0 { 3 } else { 2 };
                     assert_eq!(demo.find_visible_share(k, 2), due, "frame {n}");
-                    demo.export_visible(&mut visible, k, 2);
+                    demo.export_visible(&mut visible[k], k);
                 }
             }
             let mut shared = 0;
             for (k, demo) in cores.iter_mut().enumerate() {
                 if share_visible {
-                    demo.import_visible(&visible, 1 - k, 2);
+                    demo.import_visible(&visible[1 - k], 1 - k);
                     // Every pass complete: the shading makes none.
                     assert_eq!(demo.find_visible_share(k, 2), 0, "frame {n}");
                 }

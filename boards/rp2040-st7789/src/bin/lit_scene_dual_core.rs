@@ -16,9 +16,11 @@
 //!   identical frames; a vertex both cores shade gets the same colour on both).
 //! - [`HANDOFF`], behind a `critical_section::Mutex` (rp2040-hal's critical section is a
 //!   hardware spinlock, so it excludes the other core too), carries the frame number from core
-//!   0 to core 1, each core's share of the vertices' screen data and colours to the other,
-//!   and the list of the
-//!   frame's bands; [`SENDER`], behind another, the display's sender (the DMA channel, SPI and
+//!   0 to core 1, the list of the frame's bands, and each core's share of the vertices'
+//!   screen data, visible-vertex marks and colours to the other: not the data themselves,
+//!   which each core writes into its own buffers (`CORE0_SCREEN`, ...) outside the lock, but
+//!   the buffers' references ([`Mailbox`], [`exchange`]), so the cores copy at the same time;
+//!   [`SENDER`], behind another mutex, the display's sender (the DMA channel, SPI and
 //!   pins). A core that has drawn a band takes the sender, sends the band (each band is its
 //!   own address window, so the order is free; the sender waits for the previous band's
 //!   transfer, takes the band's pixel buffer for the new one and gives the band the buffer
@@ -155,6 +157,18 @@ static CORE0_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
 static CORE1_BUFFERS: ConstStaticCell<MeshBuffers<Fixed22>> =
     ConstStaticCell::new(MeshBuffers::new());
 static TABLE: ConstStaticCell<EncodeTable> = ConstStaticCell::new(EncodeTable::zeroed());
+/// Each core's exchange buffers (its share of the screen data, 9 KiB, and its colours, 7
+/// KiB: [`Outboxes`]), all zeros.
+static CORE0_SCREEN: ConstStaticCell<ScreenExchange<Fixed22>> =
+    ConstStaticCell::new(ScreenExchange::new());
+static CORE1_SCREEN: ConstStaticCell<ScreenExchange<Fixed22>> =
+    ConstStaticCell::new(ScreenExchange::new());
+static CORE0_VISIBLE: ConstStaticCell<VisibleExchange> =
+    ConstStaticCell::new(VisibleExchange::new());
+static CORE1_VISIBLE: ConstStaticCell<VisibleExchange> =
+    ConstStaticCell::new(VisibleExchange::new());
+static CORE0_COLOURS: ConstStaticCell<ColourExchange> = ConstStaticCell::new(ColourExchange::new());
+static CORE1_COLOURS: ConstStaticCell<ColourExchange> = ConstStaticCell::new(ColourExchange::new());
 
 /// Core 1's stack, in words: 16 KiB (the meshes, per-frame data and bands are statics; the stack holds
 /// the rasterizer's clipping buffers, a frame's lights and the light models' locals).
@@ -205,19 +219,13 @@ struct Handoff {
     /// What drawing core 1's bands of this frame did (added by core 1 as it sends each band,
     /// read by core 0 once every band is sent).
     stats: DrawStats,
-    /// `screened[k]`: core k's share of this frame's vertex screen data is in `screen` (set
-    /// by core k, cleared by the other core once it has taken it); each core writes only its
-    /// own share's entries.
-    screened: [bool; 2],
-    screen: ScreenExchange<Fixed22>,
-    /// `shaded[k]`: core k's share of this frame's vertex colours is in `colours[k]` (set by
-    /// core k, cleared by the other core once it has taken them).
-    shaded: [bool; 2],
-    colours: [ColourExchange; 2],
-    /// `seen[k]`: core k's visible-vertex marks and its triangles' rows of this frame are in
-    /// `visible` (set by core k, cleared by the other core once it has taken them).
-    seen: [bool; 2],
-    visible: VisibleExchange,
+    /// The cores' shares of this frame's vertex screen data on their way ([`Mailbox`]).
+    screen: Mailbox<ScreenExchange<Fixed22>>,
+    /// The cores' shares of this frame's vertex colours on their way ([`Mailbox`]).
+    colours: Mailbox<ColourExchange>,
+    /// The cores' visible-vertex marks and their triangles' rows of this frame on their way
+    /// ([`Mailbox`]).
+    visible: Mailbox<VisibleExchange>,
 }
 
 /// The display's sender, here between bands (`None` while a core sends with it). Apart from
@@ -258,12 +266,9 @@ static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
         shaded: 0,
         pixels: 0,
     },
-    screened: [false; 2],
-    screen: ScreenExchange::new(),
-    shaded: [false; 2],
-    colours: [ColourExchange::new(), ColourExchange::new()],
-    seen: [false; 2],
-    visible: VisibleExchange::new(),
+    screen: Mailbox::EMPTY,
+    colours: Mailbox::EMPTY,
+    visible: Mailbox::EMPTY,
 }));
 
 /// The cores' split of the vertex transform: core `core` transforms the vertices of index
@@ -271,14 +276,20 @@ static HANDOFF: Mutex<RefCell<Handoff>> = Mutex::new(RefCell::new(Handoff {
 /// that both then hold every vertex's screen data, each vertex transformed once per frame.
 /// (Each core keeps the world positions and normals of its own vertices only: the shading
 /// split below is the same.)
-fn share_transform(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: usize) {
+fn share_transform(
+    demo: &mut Demo<'_, Fixed22>,
+    frame: &Frame<Fixed22>,
+    core: usize,
+    own: &mut Outboxes,
+) {
     demo.transform_share(frame, core, 2);
-    swap_with_other(
+    exchange(
         demo,
         core,
-        |h| &mut h.screened,
-        |demo, h| demo.export_screen(&mut h.screen, core, 2),
-        |demo, h, other| demo.import_screen(&h.screen, other, 2),
+        &mut own.screen,
+        |h| &mut h.screen,
+        |demo, out| demo.export_screen(out, core),
+        |demo, theirs, other| demo.import_screen(theirs, other),
     );
 }
 
@@ -287,14 +298,15 @@ fn share_transform(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: u
 /// other core and takes the other core's, so that both then know every visible vertex, each
 /// triangle visited once per frame (it was twice, once on each core: rp2040js frames 1 to
 /// 15, 4 896 673 -> 4 853 557 cycles on average).
-fn share_visible(demo: &mut Demo<'_, Fixed22>, core: usize) {
+fn share_visible(demo: &mut Demo<'_, Fixed22>, core: usize, own: &mut Outboxes) {
     demo.find_visible_share(core, 2);
-    swap_with_other(
+    exchange(
         demo,
         core,
-        |h| &mut h.seen,
-        |demo, h| demo.export_visible(&mut h.visible, core, 2),
-        |demo, h, other| demo.import_visible(&h.visible, other, 2),
+        &mut own.visible,
+        |h| &mut h.visible,
+        |demo, out| demo.export_visible(out, core),
+        |demo, theirs, other| demo.import_visible(theirs, other),
     );
 }
 
@@ -302,8 +314,13 @@ fn share_visible(demo: &mut Demo<'_, Fixed22>, core: usize) {
 /// `core` modulo 2, hands its colours to the other core and takes the other core's, so that
 /// both then hold every visible vertex's colour, each shaded once per frame. (The visible
 /// vertices first: [`share_visible`].)
-fn share_shading(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: usize) -> u32 {
-    share_visible(demo, core);
+fn share_shading(
+    demo: &mut Demo<'_, Fixed22>,
+    frame: &Frame<Fixed22>,
+    core: usize,
+    own: &mut Outboxes,
+) -> u32 {
+    share_visible(demo, core, own);
     // Core 1 sends what the last frame left (its parked bands, or its last band carried as
     // empty) and this frame's empty bands between its
     // shader calls.
@@ -316,47 +333,83 @@ fn share_shading(demo: &mut Demo<'_, Fixed22>, frame: &Frame<Fixed22>, core: usi
             send_empty_bands(&mut pending);
         }
     });
-    swap_with_other(
+    exchange(
         demo,
         core,
-        |h| &mut h.shaded,
-        |demo, h| demo.export_colours(&mut h.colours[core]),
-        |demo, h, other| demo.import_colours(&h.colours[other], other, 2),
+        &mut own.colours,
+        |h| &mut h.colours,
+        |demo, out| demo.export_colours(out),
+        |demo, theirs, other| demo.import_colours(theirs, other, 2),
     );
     calls
 }
 
-/// One exchange between the cores (screen data, visible vertices, colours): core `core`
-/// writes its part into the handoff with `export` once the other core has taken its last one
-/// (its flag in `flags` clear), sets the flag, then takes the other core's part with `import`
-/// once that core's flag is set, and clears it. (One handshake for the three exchanges
-/// instead of three copies of it: rp2040js frames 1 to 15, 4 853 557 -> 4 858 028 cycles on
-/// average, whether inlined or not.)
+/// One core's exchange buffers while it holds them: each core writes its share into its own
+/// and reads the other core's, so the two copy at the same time, outside the lock
+/// ([`exchange`]).
+struct Outboxes {
+    screen: Option<&'static mut ScreenExchange<Fixed22>>,
+    visible: Option<&'static mut VisibleExchange>,
+    colours: Option<&'static mut ColourExchange>,
+}
+
+/// The buffers of one exchange in flight between the cores: `ready[k]` holds core k's share
+/// for the other core to read, `back[k]` core k's buffer once read, for core k to take back.
+/// Only the buffers' references pass under the lock ([`exchange`]).
+struct Mailbox<X: 'static> {
+    ready: [Option<&'static mut X>; 2],
+    back: [Option<&'static mut X>; 2],
+}
+
+impl<X: 'static> Mailbox<X> {
+    const EMPTY: Self = Mailbox {
+        ready: [None, None],
+        back: [None, None],
+    };
+}
+
+/// One exchange between the cores by buffers passed whole (screen data, colours): core
+/// `core` writes its share into its own buffer `own` with `export` (waiting for the other
+/// core to hand it back from the last exchange if it has not yet), hands it over, then reads
+/// the other core's with `import` once it is there and hands that back. The copies run on
+/// both cores at once and outside the lock, which only passes the references. (They ran
+/// under it, one core at a time: rp2040js, two cores, frame 1, core 0's screen-data
+/// exchange took 179 us writing, 272 us waiting and 270 us reading, the visible vertices'
+/// 64, 86 and 84, the colours' 71, 87 and 82. Frames 1 to 15 of `run.mjs --dual --frames
+/// 16`: 4 419 164 -> 4 390 487 cycles a frame on average with the screen data and colours
+/// passed whole, 4 373 605 with the visible vertices too; each core's shares are written
+/// densely, so the buffers take the memory the shared ones did.)
 #[inline(always)]
-fn swap_with_other(
+fn exchange<X: 'static>(
     demo: &mut Demo<'_, Fixed22>,
     core: usize,
-    flags: fn(&mut Handoff) -> &mut [bool; 2],
-    export: impl Fn(&Demo<'_, Fixed22>, &mut Handoff),
-    import: impl Fn(&mut Demo<'_, Fixed22>, &Handoff, usize),
+    own: &mut Option<&'static mut X>,
+    mailbox: fn(&mut Handoff) -> &mut Mailbox<X>,
+    export: impl FnOnce(&Demo<'_, Fixed22>, &mut X),
+    import: impl FnOnce(&mut Demo<'_, Fixed22>, &X, usize),
 ) {
-    wait_for(|h| {
-        if flags(h)[core] {
-            return None;
+    let other = 1 - core;
+    let out = match own.take() {
+        Some(out) => out,
+        None => wait_for(|h| mailbox(h).back.get_mut(core)?.take()),
+    };
+    export(demo, out);
+    critical_section::with(|cs| {
+        if let Some(slot) = mailbox(&mut HANDOFF.borrow_ref_mut(cs)).ready.get_mut(core) {
+            *slot = Some(out);
         }
-        export(demo, h);
-        flags(h)[core] = true;
-        Some(())
     });
     cortex_m::asm::sev();
-    let other = 1 - core;
-    wait_for(|h| {
-        if !flags(h)[other] {
-            return None;
+    let theirs = wait_for(|h| mailbox(h).ready.get_mut(other)?.take());
+    import(demo, theirs, other);
+    critical_section::with(|cs| {
+        let mut h = HANDOFF.borrow_ref_mut(cs);
+        let mailbox = mailbox(&mut h);
+        if let Some(slot) = mailbox.back.get_mut(other) {
+            *slot = Some(theirs);
         }
-        import(demo, h, other);
-        flags(h)[other] = false;
-        Some(())
+        // This core's buffer, if the other core has read it already.
+        *own = mailbox.back.get_mut(core).and_then(Option::take);
     });
     cortex_m::asm::sev();
 }
@@ -662,7 +715,11 @@ fn send(sender: &mut Sender, band: &mut Band<'static, Rgb565>, k: u16) {
 
 /// Core 1: draws and sends bands of each frame core 0 asks for, from the front of the list
 /// (its share, cheapest first).
-fn core1(buffers: &'static mut MeshBuffers<Fixed22>, table: &'static EncodeTable) {
+fn core1(
+    buffers: &'static mut MeshBuffers<Fixed22>,
+    table: &'static EncodeTable,
+    mut boxes: Outboxes,
+) {
     let mut demo = Demo::<Fixed22>::sharing(buffers, table, SHADING).unwrap();
     // Core 1's band and depth band, in statics like core 0's (9.4 KiB each).
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
@@ -675,8 +732,8 @@ fn core1(buffers: &'static mut MeshBuffers<Fixed22>, table: &'static EncodeTable
             Some(n)
         });
         let frame = demo.frame(n).unwrap();
-        share_transform(&mut demo, &frame, 1);
-        let shaded = share_shading(&mut demo, &frame, 1);
+        share_transform(&mut demo, &frame, 1, &mut boxes);
+        let shaded = share_shading(&mut demo, &frame, 1, &mut boxes);
         critical_section::with(|cs| HANDOFF.borrow_ref_mut(cs).stats.shaded += shaded);
         // The last frame's parked bands out (if the shading has not sent them), and this
         // core's band back if it parked it.
@@ -801,16 +858,26 @@ fn run() -> ! {
     //    0 builds its own). The power-on state machine (PSM) and the FIFO between the cores
     //    are used once, to start it.
     let core1_buffers = CORE1_BUFFERS.take();
+    let core1_boxes = Outboxes {
+        screen: Some(CORE1_SCREEN.take()),
+        visible: Some(CORE1_VISIBLE.take()),
+        colours: Some(CORE1_COLOURS.take()),
+    };
     let mut multicore = Multicore::new(&mut pac.PSM, &mut pac.PPB, &mut sio.fifo);
     let cores = multicore.cores();
     cores[1]
         .spawn(CORE1_STACK.take().unwrap(), move || {
-            core1(core1_buffers, table)
+            core1(core1_buffers, table, core1_boxes)
         })
         .unwrap();
 
     // 11. Core 0's own scene and band, as in `lit_scene.rs`.
     let buffers = CORE0_BUFFERS.take();
+    let mut boxes = Outboxes {
+        screen: Some(CORE0_SCREEN.take()),
+        visible: Some(CORE0_VISIBLE.take()),
+        colours: Some(CORE0_COLOURS.take()),
+    };
     let mut demo = Demo::<Fixed22>::sharing(buffers, table, SHADING).unwrap();
     let pixels = singleton!(: [Rgb565; BAND_PIXELS] = [Rgb565(0); BAND_PIXELS]).unwrap();
     let depth = singleton!(: [u16; BAND_PIXELS] = [0; BAND_PIXELS]).unwrap();
@@ -844,10 +911,10 @@ fn run() -> ! {
         cortex_m::asm::sev();
         let frame = demo.frame(n).unwrap();
         let t_setup = timer.get_counter_low();
-        share_transform(&mut demo, &frame, 0);
+        share_transform(&mut demo, &frame, 0, &mut boxes);
         let t_transform = timer.get_counter_low();
         let mut stats = DrawStats {
-            shaded: share_shading(&mut demo, &frame, 0),
+            shaded: share_shading(&mut demo, &frame, 0, &mut boxes),
             ..DrawStats::default()
         };
         let t_shade = timer.get_counter_low();
