@@ -244,5 +244,6 @@ export class Multicore {
     core.LR = 0xfffffffe; // returning from the entry point would fault (the ROM would sleep)
     this.inRom[1] = false;
     this.launches++;
+    if (this.onLaunch) this.onLaunch(sp >>> 0);
   }
 }

@@ -18,6 +18,8 @@
 // `_stack_start`) with 0xA5 bytes before the reset and reports in the summary how much of it
 // the run used (`stack_used`, bytes from the top down to the deepest byte written; the
 // cortex-m-rt start-up touches only the statics), and the region's size (`stack_region`).
+// With --dual also core 1's (`core1_stack_used`, `core1_stack_region`): the `CORE1_STACK`
+// static below the stack pointer core 1 is launched with, painted at the launch.
 //
 // Exits non-zero on a fault (BKPT/UDF, e.g. panic-probe; unimplemented instruction; unmapped
 // memory), a defmt error line, a malformed ST7789 stream, or the cycle budget running out
@@ -81,6 +83,21 @@ const stackRegion = (() => {
   }
   machine.rp2040.sram.fill(PAINT, lo.value - RAM_BASE, hi.value - RAM_BASE);
   return { lo: lo.value, hi: hi.value };
+})();
+// With --dual, core 1's stack too: the firmware's `CORE1_STACK` static (zeroed at start-up)
+// below the stack pointer core 1 is launched with, painted at the launch.
+const core1Stack = (() => {
+  if (!opts.stack || !opts.dual) return null;
+  const sym = elf.symbols.find((s) => s.name.includes('CORE1_STACK') && s.size > 0);
+  if (!sym) return null;
+  const region = { lo: sym.value, hi: null };
+  machine.multicore.onLaunch = (sp) => {
+    if (sp > sym.value && sp <= sym.value + sym.size) {
+      machine.rp2040.sram.fill(PAINT, sym.value - RAM_BASE, sp - RAM_BASE);
+      region.hi = sp;
+    }
+  };
+  return region;
 })();
 const { rp2040, clock } = machine;
 const errors = [];
@@ -242,6 +259,14 @@ if (stackRegion) {
   while (deepest < hi && ram[deepest - RAM_BASE] === PAINT) deepest += 1;
   summary.stack_region = hi - lo;
   summary.stack_used = hi - deepest;
+}
+if (core1Stack && core1Stack.hi !== null) {
+  const { lo, hi } = core1Stack;
+  const ram = machine.rp2040.sram;
+  let deepest = lo;
+  while (deepest < hi && ram[deepest - RAM_BASE] === PAINT) deepest += 1;
+  summary.core1_stack_region = hi - lo;
+  summary.core1_stack_used = hi - deepest;
 }
 console.log(JSON.stringify(summary));
 process.exit(errors.length ? 1 : 0);
