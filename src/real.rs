@@ -43,6 +43,23 @@ pub(crate) mod sealed {
     pub type SphereRatios<T> = ([T; 3], T, T, [T; 3]);
 
     pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
+        /// What a `PreparedMesh` keeps of its last transform to compute its vertices' normals
+        /// where first needed: in fixed point, whose normalization makes the normal the
+        /// costly part of a vertex's transform, the normal matrix's rows and whether they are
+        /// small (`Affine::is_small`); nothing for the floats, which compute the normals in
+        /// the transform. (Kept as 44 bytes with `f32` too, the field had cost the STM32F411's
+        /// Gouraud frame 0 about 1 800 instructions, by the demo's layout alone.)
+        #[cfg(feature = "raster")]
+        type KeptNormals: Copy + core::fmt::Debug;
+        /// Nothing kept.
+        #[cfg(feature = "raster")]
+        const NO_KEPT_NORMALS: Self::KeptNormals;
+        /// Keeps `rows` and `small` (the floats: nothing).
+        #[cfg(feature = "raster")]
+        fn keep_normals(rows: [crate::Vec3<Self>; 3], small: bool) -> Self::KeptNormals;
+        /// What [`Sealed::keep_normals`] kept (the floats: `None`).
+        #[cfg(feature = "raster")]
+        fn kept_normals(kept: &Self::KeptNormals) -> Option<([crate::Vec3<Self>; 3], bool)>;
         /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are below 16 in
         /// magnitude and whose products and their sum are below 512 (unit vectors and the
         /// cross product of two; offsets between positions within the fixed-point coordinate
@@ -191,6 +208,18 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for f32 {
+        #[cfg(feature = "raster")]
+        type KeptNormals = ();
+        #[cfg(feature = "raster")]
+        const NO_KEPT_NORMALS: () = ();
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
+            None
+        }
         #[inline(always)]
         fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
             <f32 as super::float::LeanFloat>::sphere_ratios(v, r)
@@ -209,6 +238,18 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for f64 {
+        #[cfg(feature = "raster")]
+        type KeptNormals = ();
+        #[cfg(feature = "raster")]
+        const NO_KEPT_NORMALS: () = ();
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
+            None
+        }
         #[inline(always)]
         fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
             <f64 as super::float::LeanFloat>::sphere_ratios(v, r)
@@ -223,6 +264,18 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for super::Fast32 {
+        #[cfg(feature = "raster")]
+        type KeptNormals = ();
+        #[cfg(feature = "raster")]
+        const NO_KEPT_NORMALS: () = ();
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
+            None
+        }
         #[inline(always)]
         fn from_q60(x: i64) -> Self {
             super::Fast32(<f32 as Sealed>::from_q60(x))

@@ -248,6 +248,16 @@ fn scene<T: Real>(w: u16, h: u16, shading: [Shading; 3]) -> Scene<T> {
 
 /// Renders `scene` with the prepared path through bands of `rows` rows, or with `draw`.
 fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>, Vec<u16>) {
+    render_with(s, rows, use_prepared, true)
+}
+
+/// [`render`], the prepared meshes shaded after their transform only if `shade`.
+fn render_with<T: Real>(
+    s: &Scene<T>,
+    rows: u16,
+    use_prepared: bool,
+    shade: bool,
+) -> (Vec<Rgb565>, Vec<u16>) {
     let (w, h) = (s.camera.width(), s.camera.height());
     let lights: [&dyn arealight::Illuminant<T>; 2] = [&s.panel, &s.lamp];
     let table = EncodeTable::new::<T>(Encoding::Gamma2);
@@ -260,7 +270,9 @@ fn render<T: Real>(s: &Scene<T>, rows: u16, use_prepared: bool) -> (Vec<Rgb565>,
     for (m, st) in s.meshes.iter().zip(storage.iter_mut()) {
         let mut p = PreparedMesh::new(Mesh::new(&m.0, &m.1).unwrap(), st).unwrap();
         p.transform(&s.camera, &m.2);
-        p.shade(&s.camera, &Lit::new(&lights, &m.3), &m.4);
+        if shade {
+            p.shade(&s.camera, &Lit::new(&lights, &m.3), &m.4);
+        }
         prepared.push(p);
     }
     in_bands(w, h, rows, |_, band| {
@@ -330,6 +342,27 @@ fn prepared_bands_equal_the_full_frame() {
         assert!(full.1.iter().filter(|&&d| d != u16::MAX).count() > 96 * 80 / 3);
         for rows in [1, 7, 16] {
             assert!(render(&s, rows, true) == full, "{rows}-row bands");
+        }
+    }
+    check::<f32>();
+    check::<f64>();
+    check::<Fixed22>();
+}
+
+/// The normals of a transform are computed where first needed: per pixel by `shade` for the
+/// whole mesh, or by `draw` for each triangle when no `shade` came after the transform. The
+/// same pixels either way, in bands of several heights.
+#[test]
+fn per_pixel_draws_the_same_pixels_without_a_shade() {
+    fn check<T: Real>() {
+        let s = scene::<T>(96, 80, [Shading::PerPixel; 3]);
+        let shaded = render_with(&s, 80, true, true);
+        assert!(shaded.1.iter().filter(|&&d| d != u16::MAX).count() > 96 * 80 / 3);
+        for rows in [7, 16, 80] {
+            assert!(
+                render_with(&s, rows, true, false) == shaded,
+                "{rows}-row bands"
+            );
         }
     }
     check::<f32>();

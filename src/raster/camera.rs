@@ -166,7 +166,7 @@ impl<T: Real> Affine<T> {
     /// every transform of the board demo): then [`Affine::point`] of a point with coordinates
     /// below 8 and [`Affine::normal`] of a normal with coordinates below 2 have products of
     /// at most 16 (the cofactors are at most 8) and sums of at most 48, which fixed point
-    /// forms without its saturation tests ([`Affine::point_small`], [`Affine::normal_small`]:
+    /// forms without its saturation tests ([`Affine::point_small`], [`NormalMatrix::unit_normal`]:
     /// the same bits).
     #[inline]
     pub(super) fn is_small(&self) -> bool {
@@ -181,16 +181,54 @@ impl<T: Real> Affine<T> {
         rows_times_small(&self.m, p) + self.t
     }
 
-    /// [`Affine::normal`] for a small transform and `n` with coordinates below 2: the same
-    /// bits, as [`Affine::point_small`].
+    /// The normal matrix alone, for the unit normals of a mesh's vertices
+    /// ([`NormalMatrix::unit_normal`]); `small`: [`Affine::is_small`] (fixed point only).
     #[inline]
-    pub(super) fn normal_small(&self, n: Vec3<T>) -> Vec3<T> {
-        rows_times_small(&self.nm, n)
+    pub(super) fn normal_matrix(&self, small: bool) -> NormalMatrix<T> {
+        NormalMatrix { nm: self.nm, small }
+    }
+}
+
+/// An [`Affine`]'s normal matrix, for the unit normals of a mesh's vertices: what
+/// `PreparedMesh` keeps to compute them where first needed.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct NormalMatrix<T> {
+    nm: [Vec3<T>; 3],
+    /// The transform is small ([`Affine::is_small`]) and fixed point: the products of a
+    /// normal within 2 need no saturation tests (the same bits as [`Affine::normal`]'s).
+    small: bool,
+}
+
+impl<T: Real> NormalMatrix<T> {
+    /// Kept as `T` keeps it (`Sealed::keep_normals`: the floats keep nothing).
+    #[inline(always)]
+    pub(super) fn keep(&self) -> T::KeptNormals {
+        T::keep_normals(self.nm, self.small)
+    }
+
+    /// What [`NormalMatrix::keep`] kept (`None` for the floats).
+    #[inline(always)]
+    pub(super) fn kept(kept: &T::KeptNormals) -> Option<Self> {
+        T::kept_normals(kept).map(|(nm, small)| NormalMatrix { nm, small })
+    }
+
+    /// The unit transformed normal of the mesh normal `n` (zero where it has no direction):
+    /// [`Affine::normal`] (without the saturation tests where `small` allows: the same bits),
+    /// then a normalization.
+    #[inline(always)]
+    pub(super) fn unit_normal(&self, n: Vec3<T>) -> Vec3<T> {
+        let zero = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
+        let m = if self.small && T::all_within([n.x, n.y, n.z], T::TWO) {
+            rows_times_small(&self.nm, n)
+        } else {
+            Vec3::new(self.nm[0].dot(n), self.nm[1].dot(n), self.nm[2].dot(n))
+        };
+        m.normalize().unwrap_or(zero)
     }
 }
 
 /// The matrix of rows `rows` times `v`, each row's dot product the sealed `dot3_small` (its
-/// bounds are the callers': [`Affine::point_small`], [`Affine::normal_small`]).
+/// bounds are the callers': [`Affine::point_small`], [`NormalMatrix::unit_normal`]).
 #[inline(always)]
 fn rows_times_small<T: Real>(rows: &[Vec3<T>; 3], v: Vec3<T>) -> Vec3<T> {
     let a = [v.x, v.y, v.z];
@@ -534,7 +572,7 @@ mod tests {
 
     /// The transform's small paths are the general ones bit for bit (`Fixed22`): random
     /// rotations times scales up to 2, points below 8 and normals below 2 through
-    /// `point_small`/`normal_small`, and random points within the coordinate limit through
+    /// `point_small` and the normal matrix's rows without saturation tests, and random points within the coordinate limit through
     /// `clip_within`, for 20 000 cases each; and a scale beyond 2 is not small.
     #[test]
     fn small_paths_are_bit_identical() {
@@ -562,7 +600,7 @@ mod tests {
             small += 1;
             let (p, n) = (v(&mut c, 7.99), v(&mut c, 1.99));
             assert_eq!(a.point_small(p), a.point(p), "{a:?} {p:?}");
-            assert_eq!(a.normal_small(n), a.normal(n), "{a:?} {n:?}");
+            assert_eq!(rows_times_small(&a.nm, n), a.normal(n), "{a:?} {n:?}");
         }
         assert!(small > cases / 2, "{small} of {cases}");
         let big = Affine::<Fixed22>::scale(Vec3::new(

@@ -55,6 +55,7 @@
 //! weights); per covered pixel: Gouraud about 20 integer operations, per pixel the shader, one
 //! division and one normalization in `T`.
 
+use super::camera::NormalMatrix;
 use super::edge::{edge_small_or_in_range, FixedPoint, SUBPIXEL};
 use super::scan::{colour_bits, DEPTH_FRAC};
 use super::shade::{Shader, Shading};
@@ -74,6 +75,10 @@ const BEYOND: u8 = 2;
 /// ... and its entry of the fixed sums holds its [`SplitShader`](super::SplitShader)'s fixed
 /// part for the mesh's `fixed_key` (cleared with the vertex's screen data).
 const KEPT: u8 = 4;
+/// ... and its normal is not computed yet: the mesh's `normals` transform gives it where it
+/// is first needed ([`PreparedMesh::settle_normal`]), the same bits as the transform would
+/// have (most vertices are never shaded: they face away or lie off screen).
+const NORMAL_DUE: u8 = 8;
 
 /// One vertex of a [`PreparedMesh`] for the current frame (see the module docs). Storage only:
 /// its fields are the rasterizer's.
@@ -205,7 +210,7 @@ impl Default for TriangleRows {
 /// # Ok::<(), arealight::raster::RasterError>(())
 /// ```
 #[derive(Debug)]
-pub struct PreparedMesh<'m, 's, T> {
+pub struct PreparedMesh<'m, 's, T: Real> {
     mesh: Mesh<'m, T>,
     verts: &'s mut [PreparedVertex<T>],
     /// One entry per triangle (or none: [`PreparedMesh::new`]), set by
@@ -228,6 +233,9 @@ pub struct PreparedMesh<'m, 's, T> {
     fixed_sums: &'s mut [LightSums<T>],
     /// The shader's fixed version and the options' `two_sided` the kept parts are for.
     fixed_key: Option<(u32, bool)>,
+    /// The normal matrix of the last transform with normals (fixed point): the normals of
+    /// the vertices marked `NORMAL_DUE` go through it when first needed.
+    normals: T::KeptNormals,
 }
 
 impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
@@ -262,6 +270,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             out_of_range: false,
             fixed_sums: &mut [],
             fixed_key: None,
+            normals: T::NO_KEPT_NORMALS,
         })
     }
 
@@ -310,11 +319,20 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     /// position, unit normal, clip position, snapped screen position and depth. Clears the
     /// shaded colours. A vertex that lands beyond [`Real::COORDINATE_LIMIT`] (fixed point
     /// only) is marked, and [`PreparedMesh::draw`] refuses the mesh until the next transform.
-    /// Cost per vertex: 2 x 9 multiply-adds, 1 normalization, 1 division, the projection
-    /// (~15 operations in `T`); fixed point adds a range test (3 absolute values, 3
-    /// comparisons). The results stay until the next transform: a mesh whose transform and
-    /// camera have not changed since (a static object) need not be transformed again, and its
-    /// next [`PreparedMesh::shade`] skips finding the visible vertices too.
+    ///
+    /// In fixed point the unit normals are computed where first needed, by the shading (or by
+    /// a drawing per pixel without a shade): the same bits, for only the vertices that are
+    /// used (a closed mesh's back faces and off-screen parts are not). The floats compute them
+    /// here, where they cost little (deferred, the bookkeeping cost the STM32F411's frame
+    /// more than it saved). rp2040js, the demo's one-core frame 1: the transform 5 396 ->
+    /// 4 104 us, the shading 26 634 -> 27 506 us, the frame 7 832 551 -> 7 787 737 cycles.
+    ///
+    /// Cost per vertex: 9 multiply-adds, 1 division, the projection (~15 operations in `T`);
+    /// fixed point adds a range test (3 absolute values, 3 comparisons); for the normal (per
+    /// vertex used, in fixed point) 9 multiply-adds and 1 normalization. The results stay
+    /// until the next transform: a mesh whose transform and camera have not changed since (a
+    /// static object) need not be transformed again, and its next [`PreparedMesh::shade`]
+    /// skips finding the visible vertices too.
     pub fn transform(&mut self, camera: &Camera<T>, transform: &Affine<T>) {
         self.transform_with(camera, transform, true, |_| true);
     }
@@ -346,7 +364,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         // Fixed point, a small transform (every demo object's): the products without
         // saturation tests where the vertex's bounds allow (the same bits).
         let small = T::RESOLUTION > T::ZERO && transform.is_small();
-        let (eight, two) = (T::from_u32(8), T::TWO);
+        let normal_matrix = transform.normal_matrix(small);
+        let eight = T::from_u32(8);
         let arr = |v: Vec3<T>| [v.x, v.y, v.z];
         for (i, (v, src)) in self.verts.iter_mut().zip(self.mesh.vertices()).enumerate() {
             if !mine(i) {
@@ -370,15 +389,14 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 continue;
             }
             let zero = Vec3::new(T::ZERO, T::ZERO, T::ZERO);
-            let n = if !normals {
-                zero
-            } else if small && T::all_within(arr(src.normal), two) {
-                transform
-                    .normal_small(src.normal)
-                    .normalize()
-                    .unwrap_or(zero)
+            // Fixed point defers the normals (see `NORMAL_DUE`); the floats, whose
+            // normalization costs little, compute them here.
+            let (n, due) = if !normals {
+                (zero, 0)
+            } else if Self::defers_normals() {
+                (zero, NORMAL_DUE)
             } else {
-                transform.normal(src.normal).normalize().unwrap_or(zero)
+                (normal_matrix.unit_normal(src.normal), 0)
             };
             // (`p` is within the coordinate limit: checked above.)
             let c = camera.clip_within(p);
@@ -397,7 +415,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
                 depth: 0,
                 colour: [0; 3],
                 outside,
-                flags: 0,
+                flags: due,
             };
             if outside != 0 {
                 clipped = true;
@@ -412,6 +430,49 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         }
         self.rows_cull = None;
         self.rows = screen_rows(camera, clipped, top, bottom);
+        if normals && Self::defers_normals() {
+            self.normals = normal_matrix.keep();
+        }
+    }
+
+    /// Whether [`PreparedMesh::transform`] leaves the normals to be computed where first
+    /// needed (`NORMAL_DUE`): in fixed point, whose normalization is the costly part of a
+    /// vertex's transform (Cortex-M0, `Fixed22`: about 460 cycles). In floating point the
+    /// bookkeeping cost more than it saved: STM32F411 (QEMU, f32), the demo's Gouraud frame 0
+    /// took 2 776 398 -> 2 784 039 instructions with the normals deferred.
+    #[inline(always)]
+    fn defers_normals() -> bool {
+        T::RESOLUTION > T::ZERO
+    }
+
+    /// Vertex `v`'s normal, if still due (`NORMAL_DUE`), from its mesh vertex `src` through
+    /// the last transform with normals (`normals`): the transform's computation, moved to
+    /// where the normal is first needed.
+    #[inline(always)]
+    fn settle_normal(
+        v: &mut PreparedVertex<T>,
+        src: Option<&super::Vertex<T>>,
+        normals: &T::KeptNormals,
+    ) {
+        if !Self::defers_normals() || v.flags & NORMAL_DUE == 0 {
+            return;
+        }
+        v.flags &= !NORMAL_DUE;
+        v.n = match (src, NormalMatrix::kept(normals)) {
+            (Some(src), Some(normals)) => normals.unit_normal(src.normal),
+            _ => Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        };
+    }
+
+    /// Computes every normal still due (for drawing per pixel, which interpolates them).
+    fn settle_normals(&mut self) {
+        if !Self::defers_normals() {
+            return;
+        }
+        let src = self.mesh.vertices();
+        for (i, v) in self.verts.iter_mut().enumerate() {
+            Self::settle_normal(v, src.get(i), &self.normals);
+        }
     }
 
     /// Gouraud: shades, once each, the vertices of the triangles that will be drawn
@@ -422,7 +483,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     ///
     /// Cost: per triangle a few integer tests (2 multiplications), to find the visible
     /// vertices; per visible vertex one shader call and a normalization (the view
-    /// direction). The triangles are not visited again while the vertices' screen data stay
+    /// direction), and in fixed point, the first time after a transform, its normal (see
+    /// [`PreparedMesh::transform`]). The triangles are not visited again while the vertices' screen data stay
     /// as they are (no [`PreparedMesh::transform`] or [`PreparedMesh::set_screen`] since the
     /// last shade) and the culling and viewport size are the same: a mesh that does not move
     /// needs neither a new transform nor that pass, only its shader calls (the same colours:
@@ -453,14 +515,18 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         W: Fn(usize) -> bool,
     {
         if opts.shading != Shading::Gouraud {
+            // Per pixel, the drawing interpolates the normals: all of them now, once.
+            self.settle_normals();
             return 0;
         }
         self.update_visible(camera, opts.cull);
         let mut calls = 0u32;
+        let src = self.mesh.vertices();
         for (i, v) in self.verts.iter_mut().enumerate() {
             if v.flags & NEEDED == 0 || !mine(i) {
                 continue;
             }
+            Self::settle_normal(v, src.get(i), &self.normals);
             let (n, view) = Self::shading_frame(camera, v, opts.two_sided);
             let col = shader.shade(v.p, n, view).finite_or_zero();
             v.colour = colour_bits(col, opts.exposure);

@@ -170,7 +170,7 @@ impl<T: Real> Default for MeshBuffers<T> {
 }
 
 /// The scene: camera, meshes prepared per frame, materials, draw options.
-pub struct Demo<'a, T> {
+pub struct Demo<'a, T: Real> {
     camera: Camera<T>,
     sphere: PreparedMesh<'a, 'a, T>,
     torus: PreparedMesh<'a, 'a, T>,

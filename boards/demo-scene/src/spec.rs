@@ -278,7 +278,7 @@ enum Finish<T> {
 }
 
 /// One object of a built scene.
-struct Placed<'a, T> {
+struct Placed<'a, T: Real> {
     mesh: PreparedMesh<'a, 'a, T>,
     transform: Affine<T>,
     finish: Finish<T>,
@@ -286,7 +286,7 @@ struct Placed<'a, T> {
 }
 
 /// A scene built in `T`, ready to render.
-pub struct Player<'a, T> {
+pub struct Player<'a, T: Real> {
     camera: Camera<T>,
     lights: Scene<T, MAX_LIGHTS, POLYGON_VERTICES>,
     objects: [Option<Placed<'a, T>>; MAX_OBJECTS],

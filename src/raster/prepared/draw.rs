@@ -1,10 +1,10 @@
 //! Drawing a [`PreparedMesh`] into a band: its triangles by the integer scan loop of
 //! [`scan`](crate::raster::scan), those that cross a clip plane clipped first.
 
-use super::{corners, faces, project, PreparedMesh, PreparedVertex};
+use super::{corners, faces, project, PreparedMesh, PreparedVertex, NORMAL_DUE};
 use crate::raster::edge::SUBPIXEL;
 use crate::raster::scan::{colour_bits, raster, Context, COLOUR_FRAC};
-use crate::raster::shade::Shader;
+use crate::raster::shade::{Shader, Shading};
 use crate::raster::target::{Band, EncodeTable, PixelFormat};
 use crate::raster::{
     clip_polygon, Camera, ClipVert, DrawOptions, DrawStats, RasterError, MAX_CLIPPED,
@@ -100,6 +100,37 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
         if a.outside & b.outside & c.outside != 0 {
             return;
         }
+        if Self::defers_normals()
+            && ctx.opts.shading == Shading::PerPixel
+            && (a.flags | b.flags | c.flags) & NORMAL_DUE != 0
+        {
+            // Per pixel without a shade since the transform (which computes the normals
+            // first): this triangle's normals computed here, the same bits.
+            let src = self.mesh.vertices();
+            let settled = |v: &PreparedVertex<T>, k: u16| {
+                let mut v = *v;
+                Self::settle_normal(&mut v, src.get(usize::from(k)), &self.normals);
+                v
+            };
+            let [a, b, c] = [settled(a, tri[0]), settled(b, tri[1]), settled(c, tri[2])];
+            return self.draw_corners(ctx, band, [&a, &b, &c], sy, stats);
+        }
+        self.draw_corners(ctx, band, [a, b, c], sy, stats);
+    }
+
+    /// [`PreparedMesh::draw_triangle`] of the triangle's vertices (their normals computed).
+    #[inline(always)]
+    fn draw_corners<P, S>(
+        &self,
+        ctx: &Context<'_, T, S, P>,
+        band: &mut Band<'_, P>,
+        [a, b, c]: [&PreparedVertex<T>; 3],
+        sy: Option<(i32, i32)>,
+        stats: &mut DrawStats,
+    ) where
+        P: PixelFormat,
+        S: Shader<T> + ?Sized,
+    {
         if (a.outside | b.outside | c.outside) == 0 {
             if let Some((sy0, sy1)) = sy {
                 let lo = a.fp.y.min(b.fp.y).min(c.fp.y);

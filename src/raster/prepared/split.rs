@@ -66,6 +66,8 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         W: Fn(usize) -> bool,
     {
         if opts.shading != Shading::Gouraud {
+            // Per pixel, the drawing interpolates the normals: all of them now, once.
+            self.settle_normals();
             return 0;
         }
         self.update_visible(camera, opts.cull);
@@ -78,12 +80,14 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
         }
         let mut calls = 0u32;
         let mut sums = self.fixed_sums.iter_mut();
+        let src = self.mesh.vertices();
         for (i, v) in self.verts.iter_mut().enumerate() {
             // (The sums run beside the vertices: none when there are no fixed sums.)
             let kept = sums.next();
             if v.flags & NEEDED == 0 || !mine(i) {
                 continue;
             }
+            Self::settle_normal(v, src.get(i), &self.normals);
             let (n, view) = Self::shading_frame(camera, v, opts.two_sided);
             let col = match kept {
                 Some(k) => {

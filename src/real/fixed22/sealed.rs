@@ -11,6 +11,20 @@ use crate::real::sealed::SphereRatios;
 use crate::Real;
 
 impl crate::real::sealed::Sealed for Fixed22 {
+    #[cfg(feature = "raster")]
+    type KeptNormals = Option<([crate::Vec3<Self>; 3], bool)>;
+    #[cfg(feature = "raster")]
+    const NO_KEPT_NORMALS: Self::KeptNormals = None;
+    #[cfg(feature = "raster")]
+    #[inline(always)]
+    fn keep_normals(rows: [crate::Vec3<Self>; 3], small: bool) -> Self::KeptNormals {
+        Some((rows, small))
+    }
+    #[cfg(feature = "raster")]
+    #[inline(always)]
+    fn kept_normals(kept: &Self::KeptNormals) -> Option<([crate::Vec3<Self>; 3], bool)> {
+        *kept
+    }
     /// `-r < c < r` for each component as `(c + r) as u32 < 2r - 1` (wrapping: a component
     /// at `i32::MIN` or `MAX` falls outside for any `r` below 256; `r <= 0`: `false`).
     #[cfg(any(feature = "polygon", feature = "raster"))]
