@@ -325,7 +325,7 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     /// used (a closed mesh's back faces and off-screen parts are not). The floats compute them
     /// here, where they cost little (deferred, the bookkeeping cost the STM32F411's frame
     /// more than it saved). rp2040js, the demo's one-core frame 1: the transform 5 396 ->
-    /// 4 104 us, the shading 26 634 -> 27 506 us, the frame 7 832 551 -> 7 787 737 cycles.
+    /// 4 118 us, the shading 26 634 -> 27 534 us, the frame 7 832 551 -> 7 791 783 cycles.
     ///
     /// Cost per vertex: 9 multiply-adds, 1 division, the projection (~15 operations in `T`);
     /// fixed point adds a range test (3 absolute values, 3 comparisons); for the normal (per
@@ -458,10 +458,19 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
             return;
         }
         v.flags &= !NORMAL_DUE;
-        v.n = match (src, NormalMatrix::kept(normals)) {
+        v.n = Self::due_normal(src, normals);
+    }
+
+    /// [`PreparedMesh::settle_normal`]'s computation, out of line: one copy for the shading
+    /// loops and the drawing's (inline in each, the RP2040 firmware's flash grew by 6.6 KiB
+    /// more; one core, rp2040js frames 1 to 15: 7 803 930 cycles a frame inline, 7 815 164
+    /// out of line).
+    #[inline(never)]
+    fn due_normal(src: Option<&super::Vertex<T>>, normals: &T::KeptNormals) -> Vec3<T> {
+        match (src, NormalMatrix::kept(normals)) {
             (Some(src), Some(normals)) => normals.unit_normal(src.normal),
             _ => Vec3::new(T::ZERO, T::ZERO, T::ZERO),
-        };
+        }
     }
 
     /// Computes every normal still due (for drawing per pixel, which interpolates them).

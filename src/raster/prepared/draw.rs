@@ -100,37 +100,19 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
         if a.outside & b.outside & c.outside != 0 {
             return;
         }
-        if Self::defers_normals()
+        // Per pixel without a shade since the transform (which computes the normals first,
+        // in fixed point): this triangle's normals computed here, the same bits. (One call
+        // of the rest below: a second would copy the per-pixel loop, 33 KiB on the M0.)
+        let settled: [PreparedVertex<T>; 3];
+        let [a, b, c] = if Self::defers_normals()
             && ctx.opts.shading == Shading::PerPixel
             && (a.flags | b.flags | c.flags) & NORMAL_DUE != 0
         {
-            // Per pixel without a shade since the transform (which computes the normals
-            // first): this triangle's normals computed here, the same bits.
-            let src = self.mesh.vertices();
-            let settled = |v: &PreparedVertex<T>, k: u16| {
-                let mut v = *v;
-                Self::settle_normal(&mut v, src.get(usize::from(k)), &self.normals);
-                v
-            };
-            let [a, b, c] = [settled(a, tri[0]), settled(b, tri[1]), settled(c, tri[2])];
-            return self.draw_corners(ctx, band, [&a, &b, &c], sy, stats);
-        }
-        self.draw_corners(ctx, band, [a, b, c], sy, stats);
-    }
-
-    /// [`PreparedMesh::draw_triangle`] of the triangle's vertices (their normals computed).
-    #[inline(always)]
-    fn draw_corners<P, S>(
-        &self,
-        ctx: &Context<'_, T, S, P>,
-        band: &mut Band<'_, P>,
-        [a, b, c]: [&PreparedVertex<T>; 3],
-        sy: Option<(i32, i32)>,
-        stats: &mut DrawStats,
-    ) where
-        P: PixelFormat,
-        S: Shader<T> + ?Sized,
-    {
+            settled = self.settled_corners(tri, [a, b, c]);
+            [&settled[0], &settled[1], &settled[2]]
+        } else {
+            [a, b, c]
+        };
         if (a.outside | b.outside | c.outside) == 0 {
             if let Some((sy0, sy1)) = sy {
                 let lo = a.fp.y.min(b.fp.y).min(c.fp.y);
@@ -143,6 +125,25 @@ impl<T: Real> PreparedMesh<'_, '_, T> {
         } else {
             self.draw_clipped(ctx, band, [a, b, c], stats);
         }
+    }
+
+    /// Copies of a triangle's vertices `v` (of indices `tri`) with their normals computed:
+    /// [`PreparedMesh::draw_triangle`]'s rare case, out of line so that the drawing's code
+    /// stays as it was (inline, the RP2040 firmware's flash grew by 34 KiB).
+    #[cold]
+    #[inline(never)]
+    fn settled_corners(
+        &self,
+        tri: &[u16; 3],
+        v: [&PreparedVertex<T>; 3],
+    ) -> [PreparedVertex<T>; 3] {
+        let src = self.mesh.vertices();
+        core::array::from_fn(|k| {
+            let mut s = *v[k];
+            let i = tri.get(k).map_or(usize::MAX, |&i| usize::from(i));
+            Self::settle_normal(&mut s, src.get(i), &self.normals);
+            s
+        })
     }
 
     /// A triangle that crosses a clip plane: clipped as [`draw`](crate::raster::draw) clips, its fan
