@@ -462,9 +462,9 @@ impl<'m, 's, T: Real> PreparedMesh<'m, 's, T> {
     }
 
     /// [`PreparedMesh::settle_normal`]'s computation, out of line: one copy for the shading
-    /// loops and the drawing's (inline in each, the RP2040 firmware's flash grew by 6.6 KiB
-    /// more; one core, rp2040js frames 1 to 15: 7 803 930 cycles a frame inline, 7 815 164
-    /// out of line).
+    /// loops and the drawing's fallback. (The RP2040 firmware, one core: inline in each,
+    /// 230 744 bytes of flash and 7 804 515 cycles a frame, rp2040js frames 1 to 15 on
+    /// average; out of line, 222 316 bytes and 7 807 899 cycles.)
     #[inline(never)]
     fn due_normal(src: Option<&super::Vertex<T>>, normals: &T::KeptNormals) -> Vec3<T> {
         match (src, NormalMatrix::kept(normals)) {
