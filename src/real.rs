@@ -207,19 +207,26 @@ pub(crate) mod sealed {
             None
         }
     }
+    /// The floats' [`Sealed::KeptNormals`]: nothing (they compute the normals in the
+    /// transform).
+    macro_rules! floats_keep_no_normals {
+        () => {
+            #[cfg(feature = "raster")]
+            type KeptNormals = ();
+            #[cfg(feature = "raster")]
+            const NO_KEPT_NORMALS: () = ();
+            #[cfg(feature = "raster")]
+            #[inline(always)]
+            fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
+            #[cfg(feature = "raster")]
+            #[inline(always)]
+            fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
+                None
+            }
+        };
+    }
     impl Sealed for f32 {
-        #[cfg(feature = "raster")]
-        type KeptNormals = ();
-        #[cfg(feature = "raster")]
-        const NO_KEPT_NORMALS: () = ();
-        #[cfg(feature = "raster")]
-        #[inline(always)]
-        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
-        #[cfg(feature = "raster")]
-        #[inline(always)]
-        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
-            None
-        }
+        floats_keep_no_normals!();
         #[inline(always)]
         fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
             <f32 as super::float::LeanFloat>::sphere_ratios(v, r)
@@ -238,18 +245,7 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for f64 {
-        #[cfg(feature = "raster")]
-        type KeptNormals = ();
-        #[cfg(feature = "raster")]
-        const NO_KEPT_NORMALS: () = ();
-        #[cfg(feature = "raster")]
-        #[inline(always)]
-        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
-        #[cfg(feature = "raster")]
-        #[inline(always)]
-        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
-            None
-        }
+        floats_keep_no_normals!();
         #[inline(always)]
         fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
             <f64 as super::float::LeanFloat>::sphere_ratios(v, r)
@@ -264,18 +260,7 @@ pub(crate) mod sealed {
         }
     }
     impl Sealed for super::Fast32 {
-        #[cfg(feature = "raster")]
-        type KeptNormals = ();
-        #[cfg(feature = "raster")]
-        const NO_KEPT_NORMALS: () = ();
-        #[cfg(feature = "raster")]
-        #[inline(always)]
-        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
-        #[cfg(feature = "raster")]
-        #[inline(always)]
-        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
-            None
-        }
+        floats_keep_no_normals!();
         #[inline(always)]
         fn from_q60(x: i64) -> Self {
             super::Fast32(<f32 as Sealed>::from_q60(x))

@@ -252,21 +252,18 @@ const summary = {
   defmt: defmtLines,
   errors,
 };
-if (stackRegion) {
-  const { lo, hi } = stackRegion;
+// A painted stack [lo, hi): its size and the bytes from the top down to the deepest one written.
+const stackUse = ({ lo, hi }) => {
   const ram = machine.rp2040.sram;
   let deepest = lo;
   while (deepest < hi && ram[deepest - RAM_BASE] === PAINT) deepest += 1;
-  summary.stack_region = hi - lo;
-  summary.stack_used = hi - deepest;
+  return [hi - lo, hi - deepest];
+};
+if (stackRegion) {
+  [summary.stack_region, summary.stack_used] = stackUse(stackRegion);
 }
 if (core1Stack && core1Stack.hi !== null) {
-  const { lo, hi } = core1Stack;
-  const ram = machine.rp2040.sram;
-  let deepest = lo;
-  while (deepest < hi && ram[deepest - RAM_BASE] === PAINT) deepest += 1;
-  summary.core1_stack_region = hi - lo;
-  summary.core1_stack_used = hi - deepest;
+  [summary.core1_stack_region, summary.core1_stack_used] = stackUse(core1Stack);
 }
 console.log(JSON.stringify(summary));
 process.exit(errors.length ? 1 : 0);
