@@ -21,7 +21,7 @@
 // demo-scene's source as a module of this test: host-sim cannot depend on the crate (with the
 // root workspace's `members = [".", ...]`, `exclude = ["boards"]` does not apply to path
 // dependencies, and demo-scene, a workspace root itself, is refused as a member).
-#[allow(dead_code, unused_attributes, unexpected_cfgs)]
+#[allow(dead_code, unused_attributes, unused_imports, unexpected_cfgs)]
 #[path = "../../boards/demo-scene/src/lib.rs"]
 mod demo_scene;
 #[path = "support/process.rs"]

@@ -80,6 +80,7 @@ use core::fmt;
 
 use crate::{Error, Real, Rgb, UnitVec3, Vec3};
 
+mod affine;
 mod camera;
 mod clip;
 mod draw;
@@ -104,7 +105,8 @@ pub use target::{
     ENCODE_ENTRIES, ENCODE_INDEX_BITS, TONE_WHITE_MAX_PERCENT,
 };
 
-pub use camera::{Affine, Camera, Projection};
+pub use affine::Affine;
+pub use camera::{Camera, Projection};
 use clip::{clip_polygon, plane_distances, ClipVert, MAX_CLIPPED};
 pub use draw::{draw, render_in_bands};
 use edge::SUBPIXEL;

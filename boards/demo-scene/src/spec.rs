@@ -29,7 +29,8 @@ use arealight::{
     Real, Rgb, Scene, SceneLight, SkyGround, SphereLight, Vec3,
 };
 
-use crate::{render_stages, FrameError, FrameReport, Glow, Stages};
+use crate::stages::{render_stages, Stages};
+use crate::{FrameError, FrameReport, Glow};
 
 /// The most lights of a scene.
 pub const MAX_LIGHTS: usize = 8;
