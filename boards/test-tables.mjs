@@ -72,7 +72,8 @@ const byKey = new Map();
 for (const raw of log) {
   const run = raw.match(/^\s*Running (?:tests\/)?(\S+?)(?:\.rs)? \(/);
   if (run) {
-    suite = run[1].replace(/^.*\//, '');
+    // (A suite in a directory, `tests/line/main.rs`, is named by its directory.)
+    suite = run[1].replace(/\/main$/, '').replace(/^.*\//, '');
     continue;
   }
   if (!raw.startsWith('[maxerr] ') || RANDOM_PER_RUN.has(suite)) continue;
@@ -275,7 +276,7 @@ for (const id of MODELS) {
   if (t.length > 2) files['hermite.md'] = t.join('\n') + '\n';
 }
 
-// Picott's peak against the true integral (tests/line.rs).
+// Picott's peak against the true integral (tests/line/).
 {
   const t = ['| m | max abs(peak - I) | mean | median I/peak |', '|---|---|---|---|'];
   const peaks = [];

@@ -42,7 +42,7 @@
 //! ## Accuracy
 //!
 //! f64 agrees with the quadrature of the definition to 1.8e-13 (measured; tested to 1e-12 in
-//! `tests/common/mod.rs`'s `F64_BUDGET`), including points within
+//! `tests/common/tolerance.rs`'s `F64_BUDGET`), including points within
 //! 1e-12 of the polygon's plane. In f32 the error is about `2^-24 size/dist` when `p` is within
 //! `dist` of an edge or vertex of the polygon (the individual edge terms are then
 //! ill-conditioned although their sum is not); the README gives the measured figures.

@@ -245,7 +245,7 @@ impl<T: Real> Superellipse<T> {
     /// light space (beam along +z; see [`LightFrame::to_light`]). 1 on the axis (`x = y = 0`)
     /// and inside the inner curve, 0 outside the outer curve and where `z <= 0`.
     ///
-    /// Accuracy (tests/shaping.rs, d from 0.1 to 4): f64 within 3e-13 of a direct evaluation
+    /// Accuracy (tests/shaping/, d from 0.1 to 4): f64 within 3e-13 of a direct evaluation
     /// of the spec's formula; f32 and [`crate::Fast32`] (identical here) within 2e-6 of f64
     /// where the model is well-conditioned, and within a few times the model's own sensitivity
     /// to 1-ULP input rounding elsewhere (in a 1%-wide transition band that sensitivity is
@@ -416,7 +416,7 @@ impl<T: Real> DistanceFalloff<T> {
     /// `M` at `z = 0` (for `alpha > 0`, inside the zones), 1 at `d0`, `(d0/z)^alpha` beyond,
     /// times the cut-on and cut-off smoothsteps.
     ///
-    /// Accuracy (tests/shaping.rs, relative to `max(1, value)`, M up to 100, alpha up to 4):
+    /// Accuracy (tests/shaping/, relative to `max(1, value)`, M up to 100, alpha up to 4):
     /// f64 within 8e-14 of a direct evaluation of the spec's formula; f32 and
     /// [`crate::Fast32`] (identical here) within 2e-6 of f64 (measured figures below). The
     /// relative error grows with `|alpha ln(z/d0)|` and `ln M` (the exponents' rounding).

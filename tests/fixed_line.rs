@@ -2,7 +2,7 @@
 //! f64 on the same (fixed-rounded) inputs, absolute error (the peak is in [0, 1]), target
 //! 1/1024 as every `Fixed22` row (tests/fixed.rs).
 //!
-//! Cases: the f32 row's generator of tests/line.rs (copied below with the segment cases drawn
+//! Cases: the f32 row's generator of tests/line/ (copied below with the segment cases drawn
 //! first from the same seed, so these are the f32 row's parallelograms): r hitting the light,
 //! near its boundary, beyond a corner, away, p near the plane, thin parallelograms. Each case
 //! is scaled by a power of two into the fixed path's coordinate cube
@@ -11,7 +11,7 @@
 //! light, README "Fixed point"); exponents m in {0, 1, 2, 3, 8, 16, 32, 63, 64, 128, 255}.
 //! With ten other seeds while probing: within 1.4e-4.
 //!
-//! Not supported in fixed point (measured on tests/line.rs's case sets in the same range):
+//! Not supported in fixed point (measured on tests/line/'s case sets in the same range):
 //! `[line_phong_peak]` 1.0e-4 on these cases but 2.6e-2 at m = 255 with another seed (p near
 //! the segment's line beyond an end: the perpendicular `g` of the segment frame, relative to
 //! the segment's size, has squared components below 2^-22 and its length vanishes; 8.1e-3
@@ -96,7 +96,7 @@ fn track(
     }
 }
 
-/// The peak cases of tests/line.rs (seed and order as there, so the parallelograms are the
+/// The peak cases of tests/line/ (seed and order as there, so the parallelograms are the
 /// f32 row's), scaled into the cube, those in the supported range: segments, parallelograms.
 fn peak_cases() -> [(Vec<PeakCase>, usize); 2] {
     let mut rng = Rng::new(0x9ea1);

@@ -585,7 +585,7 @@ mod tests {
             assert!(find_model(id).is_some(), "{id}");
         }
         // That the dispatch reads exactly the declared parameters is checked end to end
-        // (tests/eval.rs: every model's line as the protocol lists it answers, and a read of
+        // (tests/eval/: every model's line as the protocol lists it answers, and a read of
         // an undeclared name panics in debug builds).
     }
 

@@ -99,7 +99,7 @@
 //! over the light's points, all of them then seen in the plane: the best over its edges. A
 //! shading point on the segment is invalid for every segment model.
 //!
-//! ## Accuracy (measured by `tests/line.rs`, which prints them as `[maxerr]` lines)
+//! ## Accuracy (measured by `tests/line/`, which prints them as `[maxerr]` lines)
 //!
 //! `[line_lambert]`, errors relative to `max(1, |I|)`:
 //!

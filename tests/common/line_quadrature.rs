@@ -1,4 +1,4 @@
-//! Independent references for the segment and parallelogram models (`tests/line.rs`): plain
+//! Independent references for the segment and parallelogram models (`tests/line/`): plain
 //! `std` f64 that never calls the library and never uses a closed form.
 //!
 //! - [`line_lambert`]: the defining integral of `[line_lambert]` along the segment by global

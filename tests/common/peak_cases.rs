@@ -1,5 +1,5 @@
 //! The random and adversarial cases of the line and parallelogram peaks
-//! (`[line_phong_peak]`, `[rect_phong_peak]`), shared by `tests/line.rs` (f64, f32, Fast32)
+//! (`[line_phong_peak]`, `[rect_phong_peak]`), shared by `tests/line/` (f64, f32, Fast32)
 //! and `tests/fixed_line.rs` (Fixed22): the same generators and seeds for every backend.
 #![allow(dead_code)]
 
