@@ -341,14 +341,16 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// is within a right angle, `polygon::edge::unclipped_ratio_sum`), the same bits; on
     /// `Fixed22` each of its edges within a right angle takes the arc ratio from its ends' unit
     /// directions instead (each vertex normalized once; per edge 2 dot products, 1 cross
-    /// product, a table's cubic piece: `polygon::edge::unit_ratio_term`).
+    /// product, a table's cubic piece: `polygon::edge::unit_ratio_term`), the directions
+    /// rounded to 16 bits (Q15) so that each product is one 32-bit product.
     /// Measured on a quad (QEMU, median of the budget's 16 inputs): 497 Cortex-M4F
     /// instructions in f32 (at d38eaa0 495: 220 unlit, 495 wholly lit, 744 to 910 clipped; 545 before the
     /// plane test's maximum went off the hot path, each squared length's range was tested
     /// once and `abs` became `VABS.F32`; with the walk alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
-    /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 832
-    /// Cortex-M0 instructions in `Fixed22` (1 016 unlit, 3 832 wholly lit, 4 326 to 6 012
-    /// clipped; 3 886 with the normalization not inlined, before its directions could be
+    /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 265
+    /// Cortex-M0 instructions in `Fixed22` (1 052 unlit, 3 265 wholly lit, 4 366 to 6 052
+    /// clipped; with the edge terms' directions in Q22, 1 016, 3 832 and 4 326 to 6 012;
+    /// 3 886 with the normalization not inlined, before its directions could be
     /// shared with the Phong term, `polygon::VertexDirs`; with the arc-tangent form for every edge 1 114, 4 646 and 4 562 to 6 257, with
     /// the walk alone 1 046, 4 929 and 4 540 to 6 230; 5 073 with the edge
     /// term's last two products saturating, 6 325 with the offsets' products saturating too:
@@ -513,11 +515,11 @@ fn lambert_fixed<T: Real>(
     // A ring wholly above the horizon: the walk's terms and tests, without its clipping state
     // (`for_each_unclipped_edge`; every vertex's distance tested once, as the walk does).
     // Each edge within a right angle by the arc ratio from its endpoints' unit directions
-    // (`edge::unit_ratio_term`), each direction normalized once (`dirs`, shared with the
-    // sample's Phong term): the first vertex's at the first edge, kept for the closing one;
+    // (`edge::unit_ratio_term`, in 16-bit directions), each direction normalized once (`dirs`,
+    // shared with the sample's Phong term): the first vertex's at the first edge, kept for the closing one;
     // the others by the arc-tangent form.
     let (mut sum, mut beside, mut near) = (T::ZERO, false, false);
-    let kv = [n.x, n.y, n.z];
+    let kv = edge::unit_q15([n.x, n.y, n.z]);
     let (mut first, mut a_dir, mut edges_left) = (None, None, verts.len());
     let whole = for_each_unclipped_edge(
         verts,
@@ -527,7 +529,7 @@ fn lambert_fixed<T: Real>(
         |ua, ub, d| {
             near |= T::all_within([ub.x, ub.y, ub.z], r_min);
             if edges_left == verts.len() {
-                first = dirs.get(0, ua).map(|a| a.array());
+                first = dirs.get(0, ua).map(|a| edge::unit_q15(a.array()));
                 a_dir = first;
             }
             edges_left = edges_left.saturating_sub(1);
@@ -535,7 +537,8 @@ fn lambert_fixed<T: Real>(
             let b_dir = if edges_left == 0 {
                 first
             } else {
-                dirs.get(verts.len() - edges_left, ub).map(|b| b.array())
+                dirs.get(verts.len() - edges_left, ub)
+                    .map(|b| edge::unit_q15(b.array()))
             };
             let ratio = a_dir
                 .zip(b_dir)

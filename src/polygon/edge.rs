@@ -179,18 +179,54 @@ const RATIO_MIN_COS_LOG2: u32 = 16;
 /// `None` (the caller takes the arc-tangent form) for an edge subtending a right angle or
 /// more (`c` below [`RATIO_MIN_COS_LOG2`]) and for a backend without an arc ratio.
 ///
-/// Accuracy on `Fixed22`: the products' truncation leaves `a x b` within a few `2^-22`, the
-/// ratio is within 5.4e-7: a term within about 2e-6 absolute, `theta` times the direction's
-/// error for a short edge (the arc-tangent form's `G = ua x d` is relatively more precise
-/// there, but both are far inside 1/1024 of the sum).
+/// The directions come in 16-bit form (issue 13's format per quantity): `a`, `b` and `k` are
+/// unit vectors in Q15 ([`unit_q15`]: their Q22 components rounded), so that every product is
+/// one 32 x 32 -> 32-bit product (one `MULS` on the Cortex-M0, where a Q22 product takes four
+/// and about 12 instructions): the cosine and `a x b` in Q30, `(a x b).k` and the ratio in
+/// Q15, the term in Q30. Bounds (nothing wraps): the components are at most `2^15`, so each
+/// product is at most `2^30`; a dot product or a cross-product component of unit vectors is
+/// at most their lengths' product, `2^30 (1 + 2^-14)`, and so are its partial sums; the ratio
+/// is at most `pi/2` (`c >= 0`), below `1.6 2^15`, and `(a x b).k` at most `2^15`. Measured on
+/// the Cortex-M0 (QEMU budget, `polygon_lambert` on a quad, wholly lit): 3 832 -> 3 265
+/// instructions; rp2040js, the demo's frames 1 to 15: one core 7 807 899 -> 7 757 327
+/// cycles, two cores 4 346 355 -> 4 321 230.
+///
+/// Accuracy on `Fixed22`: the directions' rounding to Q15 (`2^-16` a component) leaves a term
+/// within about `5e-5` absolute (the ratio is within 5.4e-7 in Q22, then rounded to Q15): the
+/// sum within 6.5e-5 of f64 over `tests/fixed/`'s 10 756 polygon cases (5.5e-6 with Q22
+/// directions; 6.9e-5 for the world-coordinate lights of `tests/world.rs`, 2.0e-6 before), and
+/// a prototype of this form within 7.4e-5 over 148 573 random quads: far inside the 1/1024
+/// that `tests/fixed/`, `tests/world.rs` and `tests/fixed_near.rs` hold it to.
 #[inline(always)]
-pub(crate) fn unit_ratio_term<T: Real>(a: [T; 3], b: [T; 3], k: [T; 3]) -> Option<T> {
-    let c = T::dot3_small(a, b);
-    if !(c >= T::from_fixed_i32(1, RATIO_MIN_COS_LOG2)) {
+pub(crate) fn unit_ratio_term<T: Real>(a: [i32; 3], b: [i32; 3], k: [i32; 3]) -> Option<T> {
+    let dot = |x: [i32; 3], y: [i32; 3]| {
+        x[0].wrapping_mul(y[0])
+            .wrapping_add(x[1].wrapping_mul(y[1]))
+            .wrapping_add(x[2].wrapping_mul(y[2]))
+    };
+    let c = dot(a, b); // Q30
+    if c < 1 << (30 - RATIO_MIN_COS_LOG2) {
         return None;
     }
-    let g = T::cross3_small(a, b);
-    Some(T::mul_small(c.arc_ratio()?, T::dot3_small(g, k)))
+    let cross = |i: usize, j: usize| {
+        a[i].wrapping_mul(b[j])
+            .wrapping_sub(a[j].wrapping_mul(b[i]))
+            >> 15
+    };
+    let g = [cross(1, 2), cross(2, 0), cross(0, 1)]; // Q15
+    let kg = dot(k, g) >> 15; // Q15
+                              // `c` to Q22 (rounded), its ratio back to Q15 (rounded).
+    let ratio = T::from_fixed_i32((c + (1 << 7)) >> 8, 22).arc_ratio()?;
+    let ratio = (ratio.to_fixed_i32(22) + (1 << 6)) >> 7;
+    let term = kg.wrapping_mul(ratio); // Q30
+    Some(T::from_fixed_i32((term + (1 << 7)) >> 8, 22))
+}
+
+/// A unit vector's components (fixed point, Q22 in `T`) rounded to Q15 for
+/// [`unit_ratio_term`]: `(x 2^22 + 2^6) >> 7`, at most `2^15` in magnitude.
+#[inline(always)]
+pub(crate) fn unit_q15<T: Real>(v: [T; 3]) -> [i32; 3] {
+    v.map(|x| x.to_fixed_i32(22).wrapping_add(1 << 6) >> 7)
 }
 
 /// [`edge_angle_term`] for an edge whose products leave the normal range (fixed point: are too
