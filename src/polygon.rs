@@ -362,7 +362,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// <!-- BEGIN acc-polygon_lambert: target/accuracy/model-polygon_lambert.md -->
     /// Measured: f64 within 2.1e-14 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 5.4e-7 (ill-conditioned: 2.9e-6; near boundary: 4.4e-4), Fast32 5.3e-6
-    /// (ill-conditioned: 2.9e-6; near boundary: 4.4e-4), Fixed22 5.5e-6; 57 939 cases in all
+    /// (ill-conditioned: 2.9e-6; near boundary: 4.4e-4), Fixed22 6.5e-5; 57 939 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-polygon_lambert -->
     #[inline]
