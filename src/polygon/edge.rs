@@ -213,9 +213,9 @@ pub(crate) fn unit_ratio_term<T: Real>(a: [i32; 3], b: [i32; 3], k: [i32; 3]) ->
             .wrapping_sub(a[j].wrapping_mul(b[i]))
             >> 15
     };
-    let g = [cross(1, 2), cross(2, 0), cross(0, 1)]; // Q15
-    let kg = dot(k, g) >> 15; // Q15
-                              // `c` to Q22 (rounded), its ratio back to Q15 (rounded).
+    // `a x b` and `(a x b).k` in Q15; `c` to Q22 (rounded) and its ratio back to Q15 (rounded).
+    let g = [cross(1, 2), cross(2, 0), cross(0, 1)];
+    let kg = dot(k, g) >> 15;
     let ratio = T::from_fixed_i32((c + (1 << 7)) >> 8, 22).arc_ratio()?;
     let ratio = (ratio.to_fixed_i32(22) + (1 << 6)) >> 7;
     let term = kg.wrapping_mul(ratio); // Q30
