@@ -54,10 +54,10 @@ use heapless::Vec;
 #[cfg(any(feature = "phong", feature = "moments"))]
 mod arc;
 mod clip;
+#[cfg(feature = "phong")]
 mod dirs;
 #[cfg(feature = "phong")]
-pub(crate) use dirs::VertexDirs;
-pub(crate) use dirs::{Uncached, VertexDirections};
+pub(crate) use dirs::{Uncached, VertexDirections, VertexDirs};
 mod edge;
 #[cfg(feature = "phong")]
 mod negligible;
@@ -292,22 +292,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         n: impl Direction<T>,
         plane: bool,
     ) -> Result<T, Error> {
-        self.lambert_at_with(p, n, plane, &mut Uncached)
-    }
-
-    /// [`PolygonLight::lambert_at`] with the vertices' unit directions from `p` taken from
-    /// (and added to) `dirs`, which the sample's Phong term shares ([`VertexDirs`]).
-    #[inline]
-    pub(crate) fn lambert_at_with(
-        &self,
-        p: Vec3<T>,
-        n: impl Direction<T>,
-        plane: bool,
-        dirs: &mut impl VertexDirections<T>,
-    ) -> Result<T, Error> {
         let n = n.try_unit("n")?.into_inner();
         if T::RESOLUTION > T::ZERO {
-            return lambert_fixed(&self.verts, self.normal, p, n, plane, dirs);
+            return lambert_fixed(&self.verts, self.normal, p, n, plane);
         }
         if plane {
             return Ok(T::ZERO);
@@ -503,7 +490,6 @@ fn lambert_fixed<T: Real>(
     p: Vec3<T>,
     n: Vec3<T>,
     plane: bool,
-    dirs: &mut impl VertexDirections<T>,
 ) -> Result<T, Error> {
     let r_min = near_limit::<T>(LAMBERT_NEAR_LOG2);
     if plane {
@@ -515,9 +501,9 @@ fn lambert_fixed<T: Real>(
     // A ring wholly above the horizon: the walk's terms and tests, without its clipping state
     // (`for_each_unclipped_edge`; every vertex's distance tested once, as the walk does).
     // Each edge within a right angle by the arc ratio from its endpoints' unit directions
-    // (`edge::unit_ratio_term`, in 16-bit directions), each direction normalized once (`dirs`,
-    // shared with the sample's Phong term): the first vertex's at the first edge, kept for the closing one;
-    // the others by the arc-tangent form.
+    // (`edge::unit_ratio_term`), each direction normalized once in 16-bit form
+    // (`unit3_q15`): the first vertex's at the first edge, kept for the closing one; the
+    // others by the arc-tangent form.
     let (mut sum, mut beside, mut near) = (T::ZERO, false, false);
     let kv = edge::unit_q15([n.x, n.y, n.z]);
     let (mut first, mut a_dir, mut edges_left) = (None, None, verts.len());
@@ -529,7 +515,7 @@ fn lambert_fixed<T: Real>(
         |ua, ub, d| {
             near |= T::all_within([ub.x, ub.y, ub.z], r_min);
             if edges_left == verts.len() {
-                first = dirs.get(0, ua).map(|a| edge::unit_q15(a.array()));
+                first = T::unit3_q15([ua.x, ua.y, ua.z]);
                 a_dir = first;
             }
             edges_left = edges_left.saturating_sub(1);
@@ -537,8 +523,7 @@ fn lambert_fixed<T: Real>(
             let b_dir = if edges_left == 0 {
                 first
             } else {
-                dirs.get(verts.len() - edges_left, ub)
-                    .map(|b| edge::unit_q15(b.array()))
+                T::unit3_q15([ub.x, ub.y, ub.z])
             };
             let ratio = a_dir
                 .zip(b_dir)

@@ -41,13 +41,14 @@ impl<T: Real, const N: usize> Illuminant<T> for PolygonLight<T, N> {
                 return (black(), black());
             }
             let plane = self.in_plane(p);
-            // Fixed point: the vertices' unit directions from `p`, each normalized once for both
-            // terms. (The floats' Lambert term takes none, so only their Phong walk would ask:
-            // the cache would cost them and save nothing; measured on the Cortex-M4F, a per-pixel
-            // frame 4.8 % longer with it.)
+            // Fixed point: the vertices' unit directions from `p` for the Phong term, each
+            // normalized once for its negligibility test and its walk. (The Lambert term takes
+            // its own, in 16-bit form: `Sealed::unit3_q15`. The floats' Lambert term takes
+            // none, so only their Phong walk would ask: the cache would cost them and save
+            // nothing; measured on the Cortex-M4F, a per-pixel frame 4.8 % longer with it.)
             if T::RESOLUTION > T::ZERO {
                 let mut dirs = VertexDirs::<T, N>::new();
-                let d = self.lambert_at_with(p, n, plane, &mut dirs);
+                let d = self.lambert_at(p, n, plane);
                 let s = self.phong_at_with(lobe, p, r, plane, &mut dirs);
                 (grey(d.unwrap_or(T::ZERO)), grey(s.unwrap_or(T::ZERO)))
             } else {

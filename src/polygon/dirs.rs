@@ -1,17 +1,17 @@
-//! The unit directions from one shading point to a polygon's vertices, shared by the terms
-//! of one sample. Fixed point normalizes a vertex's direction for up to three of them: the
-//! Lambert term of a ring wholly above the horizon (the arc ratio's edges), the Phong term's
-//! negligibility test and its walk. Each is `(v_i - p).to_unit()` of the same offset, so the
-//! same bits whichever asks first: [`VertexDirs`] normalizes each at most once per sample.
-//! (A normalization is about 270 Cortex-M0 instructions in `Fixed22`. Measured with the
-//! cache: the QEMU budget's 32 demo shader calls 516 053 -> 508 049 M0 instructions, the
-//! RP2040 demo's frame 1 10 687 086 -> 10 638 442 cycles in rp2040js.)
+//! The unit directions from one shading point to a polygon's vertices, shared by the Phong
+//! term's two uses of them in fixed point: its negligibility test and its walk. Each is
+//! `(v_i - p).to_unit()` of the same offset, so the same bits whichever asks first:
+//! [`VertexDirs`] normalizes each at most once per sample. (A normalization is about 270
+//! Cortex-M0 instructions in `Fixed22`. Measured with the cache, when the Lambert term shared
+//! it too: the QEMU budget's 32 demo shader calls 516 053 -> 508 049 M0 instructions, the
+//! RP2040 demo's frame 1 10 687 086 -> 10 638 442 cycles in rp2040js. The fixed-point Lambert
+//! term now normalizes in 16-bit form on its own, `Sealed::unit3_q15`, at about a fifth of
+//! that cost.)
 
 use crate::{Real, UnitVec3, Vec3};
 
 /// The directions of up to `N` vertices from one shading point, each normalized when first
 /// asked for (see the module docs). Make one per sample and shading point.
-#[cfg(feature = "phong")]
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct VertexDirs<T, const N: usize> {
     dirs: [Option<UnitVec3<T>>; N],
@@ -25,7 +25,6 @@ pub(crate) struct VertexDirs<T, const N: usize> {
 pub(crate) trait VertexDirections<T> {
     /// Whether `get` keeps what it computes (a caller that asks once per vertex anyway may
     /// then call `to_unit` itself, as it would without a cache).
-    #[cfg_attr(not(feature = "phong"), allow(dead_code))] // read by the Phong walk
     const CACHED: bool;
 
     /// The unit direction of vertex `i`, whose offset from the shading point is `u` (`v_i -
@@ -46,7 +45,6 @@ impl<T: Real> VertexDirections<T> for Uncached {
     }
 }
 
-#[cfg(feature = "phong")]
 impl<T: Real, const N: usize> VertexDirections<T> for VertexDirs<T, N> {
     const CACHED: bool = true;
     #[inline(always)]
@@ -55,7 +53,6 @@ impl<T: Real, const N: usize> VertexDirections<T> for VertexDirs<T, N> {
     }
 }
 
-#[cfg(feature = "phong")]
 impl<T: Real, const N: usize> VertexDirs<T, N> {
     /// None known yet.
     #[inline(always)]

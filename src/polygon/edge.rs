@@ -179,24 +179,29 @@ const RATIO_MIN_COS_LOG2: u32 = 16;
 /// `None` (the caller takes the arc-tangent form) for an edge subtending a right angle or
 /// more (`c` below [`RATIO_MIN_COS_LOG2`]) and for a backend without an arc ratio.
 ///
-/// The directions come in 16-bit form (issue 13's format per quantity): `a`, `b` and `k` are
-/// unit vectors in Q15 ([`unit_q15`]: their Q22 components rounded), so that every product is
-/// one 32 x 32 -> 32-bit product (one `MULS` on the Cortex-M0, where a Q22 product takes four
-/// and about 12 instructions): the cosine and `a x b` in Q30, `(a x b).k` and the ratio in
-/// Q15, the term in Q30. Bounds (nothing wraps): the components are at most `2^15`, so each
-/// product is at most `2^30`; a dot product or a cross-product component of unit vectors is
-/// at most their lengths' product, `2^30 (1 + 2^-14)`, and so are its partial sums; the ratio
-/// is at most `pi/2` (`c >= 0`), below `1.6 2^15`, and `(a x b).k` at most `2^15`. Measured on
-/// the Cortex-M0 (QEMU budget, `polygon_lambert` on a quad, wholly lit): 3 832 -> 3 265
-/// instructions; rp2040js, the demo's frames 1 to 15: one core 7 807 899 -> 7 757 327
-/// cycles, two cores 4 346 355 -> 4 321 230.
+/// The directions come in 16-bit form (issue 13's format per quantity): `a` and `b` are unit
+/// vectors in Q15 normalized in that form (the sealed `unit3_q15`), `k` the normal's Q22
+/// components rounded to Q15 ([`unit_q15`]), so that every product is one 32 x 32 -> 32-bit
+/// product (one `MULS` on the Cortex-M0, where a Q22 product takes four and about 12
+/// instructions): the cosine and `a x b` in Q30, `(a x b).k` and the ratio (the sealed
+/// `arc_ratio_q15`, the same cubic pieces in 32-bit products) in Q15, the term in Q30.
+/// Bounds (nothing wraps): the components are at most `2^15 + 1`, so each product is below
+/// `2^30 + 2^17`; a dot product or a cross-product component (and each partial sum of one) is
+/// at most the lengths' product, below `2^30 (1 + 2^-12)`; the ratio is at most `pi/2` (`c
+/// >= 0`), below `1.6 2^15`, and `(a x b).k` below `2^15 (1 + 2^-11)`: the term below `1.6
+/// 2^30`.
 ///
-/// Accuracy on `Fixed22`: the directions' rounding to Q15 (`2^-16` a component) leaves a term
-/// within about `5e-5` absolute (the ratio is within 5.4e-7 in Q22, then rounded to Q15): the
-/// sum within 6.5e-5 of f64 over `tests/fixed/`'s 10 756 polygon cases (5.5e-6 with Q22
-/// directions; 6.9e-5 for the world-coordinate lights of `tests/world.rs`, 2.0e-6 before), and
-/// a prototype of this form within 7.4e-5 over 148 573 random quads: far inside the 1/1024
-/// that `tests/fixed/`, `tests/world.rs` and `tests/fixed_near.rs` hold it to.
+/// Measured on the Cortex-M0 (QEMU budget, `polygon_lambert` on a quad, wholly lit): 3 832
+/// instructions with Q22 products, 3 265 with Q15 products from the Q22 directions, 2 507
+/// with the directions normalized in 16-bit form, 2 182 with the ratio in 32-bit products
+/// (1 888 with a `UnitVec3` normal).
+///
+/// Accuracy on `Fixed22`: the directions (within 1.1e-4 a component, 5.2e-5 measured; see
+/// `unit_q15` of `fixed22::normalize`) and the ratio (within `2^-16 + 4.2e-6`) leave the sum
+/// within 6.5e-5 of f64 over `tests/fixed/`'s 10 756 polygon cases (5.5e-6 with Q22
+/// directions and products; 6.9e-5 for the world-coordinate lights of `tests/world.rs`, 2.0e-6
+/// with Q22): far inside the 1/1024 that `tests/fixed/`, `tests/world.rs` and
+/// `tests/fixed_near.rs` hold it to.
 #[inline(always)]
 pub(crate) fn unit_ratio_term<T: Real>(a: [i32; 3], b: [i32; 3], k: [i32; 3]) -> Option<T> {
     let dot = |x: [i32; 3], y: [i32; 3]| {
@@ -213,11 +218,10 @@ pub(crate) fn unit_ratio_term<T: Real>(a: [i32; 3], b: [i32; 3], k: [i32; 3]) ->
             .wrapping_sub(a[j].wrapping_mul(b[i]))
             >> 15
     };
-    // `a x b` and `(a x b).k` in Q15; `c` to Q22 (rounded) and its ratio back to Q15 (rounded).
+    // `a x b` and `(a x b).k` in Q15; the ratio of `c` in Q15 (rounded).
     let g = [cross(1, 2), cross(2, 0), cross(0, 1)];
     let kg = dot(k, g) >> 15;
-    let ratio = T::from_fixed_i32((c + (1 << 7)) >> 8, 22).arc_ratio()?;
-    let ratio = (ratio.to_fixed_i32(22) + (1 << 6)) >> 7;
+    let ratio = T::arc_ratio_q15(c)?;
     let term = kg.wrapping_mul(ratio); // Q30
     Some(T::from_fixed_i32((term + (1 << 7)) >> 8, 22))
 }

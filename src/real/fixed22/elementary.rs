@@ -236,6 +236,21 @@ static RSQRT_SEED_BY_TOP: [(u32, i16, u16); 32] = {
     t
 };
 
+/// The quadratic start of [`rsqrt_core_at`] for `m` in `[2^30, 2^32)`: `2^30 / sqrt(m /
+/// 2^30)` (in `(2^29, 2^30)`) to a relative 2^-15.8 ([`RSQRT_SEED`]), below `2^30`. Also the
+/// whole reciprocal square root of the 16-bit normalization (`normalize::unit_q15`), whose
+/// precision it matches.
+#[inline(always)]
+pub(super) fn rsqrt_seed(m: u32) -> u32 {
+    // m in [2^30, 2^32): the index is in [8, 32) (a `u32` shifted right by 27: below 32, so
+    // no bounds test is compiled; the first entry below 8, for a caller's wrong exponent).
+    let (c0, c1, c2) = RSQRT_SEED_BY_TOP[(m >> 27) as usize];
+    let t = ((m >> 11) & 0xFFFF) as i32;
+    // |c1| < 2^15, t < 2^16: every product fits an i32.
+    let inner = i32::from(c1) + ((i32::from(c2) * t) >> 16);
+    (c0 as i32 + ((inner * t) >> 5)).min((1 << 30) - 1) as u32
+}
+
 /// The shared core of `sqrt`, `rsqrt` and `sqrt_rsqrt`: for `v > 0`, `(m, j, y)` with
 /// `v = (m / 2^30) 4^j`, `m` in `[2^30, 2^32)` and `y = 2^32 / sqrt(m / 2^30)` to a relative
 /// 2^-29.5 (`y < 2^32`). A quadratic start from [`RSQRT_SEED`] (2^-15.8) and one Newton step
@@ -252,15 +267,8 @@ pub(super) fn rsqrt_core(v: u32) -> (u32, u32, u32) {
 #[inline(always)]
 pub(super) fn rsqrt_core_at(v: u32, j2: u32) -> (u32, u32, u32) {
     let m = v << (30 - j2);
-    // m in [2^30, 2^32): the index is in [0, 24) (`get`, so that no panic path is compiled;
-    // the first entry for a caller's wrong `j2`).
-    let (c0, c1, c2) = RSQRT_SEED_BY_TOP[(m >> 27) as usize];
-    let t = ((m >> 11) & 0xFFFF) as i32;
-    // |c1| < 2^15, t < 2^16: every product fits an i32.
-    let inner = i32::from(c1) + ((i32::from(c2) * t) >> 16);
-    let y0 = (c0 as i32 + ((inner * t) >> 5)).min((1 << 30) - 1) as u32;
-    let y = y0 << 2; // Q32
-                     // m >= 2^31 has a zero low bit (m = v << (30 - j2) and v < 2^31): m/2 is exact, Q29.
+    let y = rsqrt_seed(m) << 2; // Q32
+                                // m >= 2^31 has a zero low bit (m = v << (30 - j2) and v < 2^31): m/2 is exact, Q29.
     let (mh, yh) = (m >> 1, y >> 1); // both < 2^31
     let s = mul_hi_u32(mh, yh); // m y, Q28, < 2^29
     let e = mul_hi_u32(s << 2, yh); // m y^2, Q29 (s << 2 < 2^31)
@@ -394,4 +402,39 @@ pub(super) fn arc_ratio_bits(c: i32) -> i32 {
     };
     let m = super::kernels::mul_bits_small;
     m(m(m(a3, u) + a2, u) + a1, u) + a0
+}
+
+/// The arc ratio `R(c)` in Q15 (rounded) of a cosine `c` in Q30, for the 16-bit polygon edge
+/// terms (`polygon::edge::unit_ratio_term`): the same pieces as [`arc_ratio_bits`], by
+/// Horner's rule in 32-bit products (one `MULS` each on the Cortex-M0, where `arc_ratio_bits`'
+/// Q22 products take four): `x = 1 - c` in Q30 (`c` clamped to `[0, 1]`), the offset `u` in
+/// its piece in Q19 (at most `2^15`), the coefficients but `a0` truncated to Q16. Bounds
+/// (nothing wraps; the largest at `x = 1`, the last piece): the inner sums stay below
+/// `46 400` and `62 480`, so each product stays below `2^31`. Error before the final rounding:
+/// the pieces' 3.9e-7, the offset's truncation to Q19 (`2^-19` times a slope below 0.9), the
+/// truncated coefficients and products (each at most `2^-16` in a sum multiplied by `u <=
+/// 1/16`, and `2^-22`): within 4.2e-6 (3.9e-6 measured on every 61st `c` by this module's
+/// tests); then the rounding to Q15 (`2^-16`). About 20 Cortex-M0 instructions where
+/// `arc_ratio_bits` takes about 60.
+#[cfg(feature = "polygon")]
+#[inline(always)]
+pub(super) fn arc_ratio_q30_to_q15(c: i32) -> i32 {
+    (arc_ratio_q30_to_q22(c) + (1 << 6)) >> 7
+}
+
+/// [`arc_ratio_q30_to_q15`] before its rounding, in Q22.
+#[cfg(feature = "polygon")]
+#[inline(always)]
+pub(super) fn arc_ratio_q30_to_q22(c: i32) -> i32 {
+    let x = (1 << 30) - c.clamp(0, 1 << 30); // [0, 2^30]
+                                             // The piece (x = 1 belongs to the last one) and the offset in it, in Q19: [0, 2^15].
+    let i = ((x >> 26) as usize).min(15);
+    let u = (x - ((i as i32) << 26)) >> 11;
+    let [a0, a1, a2, a3] = match ARC_RATIO_CUBICS.get(i) {
+        Some(&piece) => piece,
+        None => ARC_RATIO_CUBICS[0],
+    };
+    let t = (a2 >> 6) + (((a3 >> 6) * u) >> 19); // Q16
+    let t = (a1 >> 6) + ((t * u) >> 19); // Q16
+    a0 + ((t * u) >> 13) // Q22 (Q16 x Q19 = Q35)
 }

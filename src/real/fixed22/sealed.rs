@@ -35,6 +35,19 @@ impl crate::real::sealed::Sealed for Fixed22 {
         let inside = |c: Self| (c.to_bits().wrapping_add(r) as u32).wrapping_sub(1) < span;
         r > 0 && inside(v[0]) && inside(v[1]) && inside(v[2])
     }
+    /// In 16-bit form throughout (see `normalize::unit_q15`).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn unit3_q15(v: [Self; 3]) -> Option<[i32; 3]> {
+        unit_q15(v)
+    }
+    /// The same pieces as `arc_ratio`, in 32-bit products (see
+    /// `elementary::arc_ratio_q30_to_q15`).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn arc_ratio_q15(c: i32) -> Option<i32> {
+        Some(super::elementary::arc_ratio_q30_to_q15(c))
+    }
     /// Exact products and sums in `i64` (every coordinate below `2^7` in magnitude, as the
     /// kernels' are: products below `2^58`, sums below `2^60`; larger coordinates: `None`, and
     /// the caller keeps its rounded products), then one shift that puts the largest magnitude's

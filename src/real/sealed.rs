@@ -1,0 +1,266 @@
+//! The seal of [`Real`](super::Real), and the crate-internal arithmetic that only the crate may call: its
+//! preconditions are kept by the crate's types (a [`UnitVec3`](crate::UnitVec3) is unit), so
+//! it is not part of the public trait.
+
+use core::ops::{Add, Mul, Sub};
+
+/// [`Sealed::sphere_ratios`]' answer: `(v / |v|, |v|, min(r / |v|, 1), parts)`, `cos sigma
+/// = Sealed::sphere_cos(parts)`.
+pub type SphereRatios<T> = ([T; 3], T, T, [T; 3]);
+
+pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> {
+    /// What a `PreparedMesh` keeps of its last transform to compute its vertices' normals
+    /// where first needed: in fixed point, whose normalization makes the normal the
+    /// costly part of a vertex's transform, the normal matrix's rows and whether they are
+    /// small (`Affine::is_small`); nothing for the floats, which compute the normals in
+    /// the transform. (Kept as 44 bytes with `f32` too, the field had cost the STM32F411's
+    /// Gouraud frame 0 about 1 800 instructions, by the demo's layout alone.)
+    #[cfg(feature = "raster")]
+    type KeptNormals: Copy + core::fmt::Debug;
+    /// Nothing kept.
+    #[cfg(feature = "raster")]
+    const NO_KEPT_NORMALS: Self::KeptNormals;
+    /// Keeps `rows` and `small` (the floats: nothing).
+    #[cfg(feature = "raster")]
+    fn keep_normals(rows: [crate::Vec3<Self>; 3], small: bool) -> Self::KeptNormals;
+    /// What [`Sealed::keep_normals`] kept (the floats: `None`).
+    #[cfg(feature = "raster")]
+    fn kept_normals(kept: &Self::KeptNormals) -> Option<([crate::Vec3<Self>; 3], bool)>;
+    /// `a.x b.x + a.y b.y + a.z b.z` for vectors whose components are below 16 in
+    /// magnitude and whose products and their sum are below 512 (unit vectors and the
+    /// cross product of two; offsets between positions within the fixed-point coordinate
+    /// limit, at most 8, and their differences): the value of
+    /// [`Vec3::dot`](crate::Vec3::dot), bit for bit. Fixed point leaves out the saturation
+    /// tests its products and sums need elsewhere (its override: each product exact
+    /// there, with no intermediate overflow); outside that range its result is
+    /// unspecified, so only callers that keep the bounds call it.
+    #[inline(always)]
+    fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
+    /// `a - b` componentwise for positions within the fixed-point coordinate limit (each
+    /// difference at most 8 in magnitude): the value of [`Vec3`]'s `-`, bit for bit (fixed
+    /// point without its saturation tests, which cannot trigger there).
+    #[inline(always)]
+    fn sub3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+    /// `a b` under the same precondition (factors below 16, the product below 512): the
+    /// value of `*`, bit for bit (fixed point without its saturation test).
+    #[inline(always)]
+    fn mul_small(a: Self, b: Self) -> Self {
+        a * b
+    }
+    /// The cross product under the same precondition: the value of
+    /// [`Vec3::cross`](crate::Vec3::cross), bit for bit.
+    #[inline(always)]
+    fn cross3_small(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+    /// The channel-wise product `[a0 b0, a1 b1, a2 b2]` of any two triples (colours): the
+    /// value of `*`, bit for bit. Fixed point skips the saturation tests when either triple
+    /// lies within `(-1, 1]` (a model's normalized value, a reflectance), where a product
+    /// cannot saturate.
+    #[inline(always)]
+    fn mul_each(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        [a[0] * b[0], a[1] * b[1], a[2] * b[2]]
+    }
+    /// `a c` for a factor `c` of at most 1 in magnitude (and `a` above the most negative
+    /// value of the type when `c = -1`): the value of `*`, bit for bit (fixed point without
+    /// its saturation test, which such a product never needs: `|a c| <= |a|`).
+    #[inline(always)]
+    fn mul_unit(a: Self, c: Self) -> Self {
+        a * c
+    }
+    /// The ratios of a sphere of radius `r` seen along `v` (its centre minus the point):
+    /// `Some((v / |v|, |v|, min(r / |v|, 1), parts))` for a finite nonzero `v`, the second
+    /// ratio `sqrt(|v|^2 - r^2) / |v|` being [`Sealed::sphere_cos`]`(parts)` (the ratios
+    /// unspecified unless `|v| > r`, where the first lies in `[0, 1]`), `None` otherwise.
+    /// That second ratio is left to the caller, which needs it only where the cap straddles
+    /// the horizon or for Phong. This default is [`Real::normalize3`], `1 / |v|` and the
+    /// products `r (1/|v|)` (clamped to 1: rounding may take it above) and `sqrt((|v| -
+    /// r)(|v| + r)) (1/|v|)` (near the sphere `r/|v|` is close to 1 and `1 - (r/|v|)^2`
+    /// would keep only its rounding). `f32` and `f64` give the same bits with one division
+    /// fewer (the normalization's own reciprocal) and the clamp on their normalization's
+    /// cold path only (`float::LeanFloat::sphere_ratios`, which proves it needless on the
+    /// hot one); [`Fixed22`](super::Fixed22) computes both ratios in its normalization's
+    /// rescaled space from the reciprocal square root it computes anyway (no division).
+    #[inline(always)]
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>>
+    where
+        Self: super::Real,
+    {
+        let (u, d) = <Self as super::Real>::normalize3(v)?;
+        let inv_d = <Self as super::Real>::ONE / d;
+        let ss = <Self as super::Real>::min(r * inv_d, <Self as super::Real>::ONE);
+        Some((u, d, ss, [d, r, inv_d]))
+    }
+    /// `cos sigma` from [`Sealed::sphere_ratios`]' parts: the floats' `sqrt((d - r)(d +
+    /// r)) (1/d)` from `[d, r, 1/d]`.
+    #[inline(always)]
+    fn sphere_cos(parts: [Self; 3]) -> Self
+    where
+        Self: super::Real,
+    {
+        let [d, r, inv_d] = parts;
+        <Self as super::Real>::sqrt((d - r) * (d + r)) * inv_d
+    }
+    /// The per-channel sums of SH9 irradiance, `k0 + sum k[i+1] m[i]`, for the eight
+    /// non-constant monomials `m` of a unit vector (each at most 1 in magnitude, within
+    /// rounding), where the backend has a cheaper form than 9 products and additions in
+    /// its own arithmetic. `None` (the default: the floats) lets the caller run the
+    /// generic loop; [`Fixed22`](super::Fixed22) answers one exact fused dot product per
+    /// channel, rounded down once (see its override).
+    /// `(ua x d, ua.ub)` scaled by one positive factor (a power of two), where the backend
+    /// can form them exactly: `None` (the default: the floats, whose products are
+    /// relative anyway) lets the caller take its own products. [`Fixed22`](super::Fixed22)
+    /// forms every product and sum exactly in 64 bits (coordinates below `2^7`; beyond,
+    /// `None`), then keeps the 23 bits from the largest's leading bit: `G` and `ua.ub` to a
+    /// relative `2^-22` however much the differences cancel (a point near an edge's line,
+    /// where `G` is small).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn cross_dot_scaled(ua: [Self; 3], ub: [Self; 3], d: [Self; 3]) -> Option<([Self; 3], Self)> {
+        let _ = (ua, ub, d);
+        None
+    }
+    /// `true` if every component of `v` is below `r` in magnitude (`r > 0`): the polygon
+    /// kernels' test of a point's distance ([`crate::polygon`]'s `near_limit`). This
+    /// default compares the largest magnitude; [`Fixed22`](super::Fixed22) tests each
+    /// component's raw bits against `(-r, r)` with one unsigned comparison (a saturated
+    /// component counts as far).
+    #[cfg(any(feature = "polygon", feature = "raster"))]
+    #[inline(always)]
+    fn all_within(v: [Self; 3], r: Self) -> bool
+    where
+        Self: super::Real,
+    {
+        let m = <Self as super::Real>::max(
+            <Self as super::Real>::max(
+                <Self as super::Real>::abs(v[0]),
+                <Self as super::Real>::abs(v[1]),
+            ),
+            <Self as super::Real>::abs(v[2]),
+        );
+        m < r
+    }
+    /// The unit vector of `v` in Q15 (`i32` components of at most `2^15` in magnitude), `None`
+    /// exactly where [`Real::unit3`](super::Real::unit3) is: the directions of the polygon
+    /// Lambert edge terms in 16-bit form (`polygon::edge::unit_ratio_term`). This default
+    /// rounds `unit3`'s components to Q15; [`Fixed22`](super::Fixed22) normalizes in 16-bit
+    /// form directly (`fixed22::normalize::unit_q15`: about 130 instead of about 330
+    /// Cortex-M0 instructions as inlined in the polygon Lambert term, within 1.1e-4 a
+    /// component, 5.2e-5 measured, instead of `2^-16`).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn unit3_q15(v: [Self; 3]) -> Option<[i32; 3]>
+    where
+        Self: super::Real,
+    {
+        let u = <Self as super::Real>::unit3(v)?;
+        Some(u.map(|c| <Self as super::Real>::to_fixed_i32(c, 15)))
+    }
+    /// The arc ratio `R(c) = acos(c)/sqrt(1 - c^2)` in Q15 (rounded) of a cosine `c` in Q30
+    /// in `[0, 1]`, for the 16-bit polygon edge terms (`polygon::edge::unit_ratio_term`);
+    /// `None` where the backend has no [`Real::arc_ratio`](super::Real::arc_ratio). This
+    /// default goes through `arc_ratio` (`c` rounded to Q22, the ratio rounded to Q15);
+    /// [`Fixed22`](super::Fixed22) evaluates the same pieces in 32-bit products
+    /// (`fixed22::elementary::arc_ratio_q30_to_q15`: within 4.2e-6 before the rounding).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn arc_ratio_q15(c: i32) -> Option<i32>
+    where
+        Self: super::Real,
+    {
+        let c = <Self as super::Real>::from_fixed_i32((c + (1 << 7)) >> 8, 22);
+        let ratio = <Self as super::Real>::arc_ratio(c)?;
+        Some((<Self as super::Real>::to_fixed_i32(ratio, 22) + (1 << 6)) >> 7)
+    }
+    /// `x 2^-60` rounded to the type (to nearest; fixed point half up), for `|x| <= 2^62`:
+    /// a coordinate of [`crate::world`]'s rescaled differences, whose largest magnitude is
+    /// in `[2, 4]`. Every backend overrides it (no f64 on the way).
+    fn from_q60(x: i64) -> Self;
+    /// `from_q60(x << k)`, for `k <= 61` and `x << k` within an `i64` (what
+    /// [`crate::world`]'s scaling leaves), without the 64-bit shift where the type can do
+    /// without: the floats
+    /// round `x` and scale the result by `2^(k - 60)` (exact: rounding commutes with a power
+    /// of two), fixed point shifts right by `37 - k` before its rounding. The same bits as
+    /// the default, `from_q60(x << k)` (`world::tests::the_shifted_conversions_are_the_shifts`).
+    #[inline(always)]
+    fn from_q60_shl(x: i64, k: u32) -> Self {
+        Self::from_q60(x << k)
+    }
+    #[cfg(feature = "sh9")]
+    #[inline(always)]
+    fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
+        let _ = (k, m);
+        None
+    }
+}
+/// The floats' [`Sealed::KeptNormals`]: nothing (they compute the normals in the
+/// transform).
+macro_rules! floats_keep_no_normals {
+    () => {
+        #[cfg(feature = "raster")]
+        type KeptNormals = ();
+        #[cfg(feature = "raster")]
+        const NO_KEPT_NORMALS: () = ();
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn keep_normals(_: [crate::Vec3<Self>; 3], _: bool) {}
+        #[cfg(feature = "raster")]
+        #[inline(always)]
+        fn kept_normals(_: &()) -> Option<([crate::Vec3<Self>; 3], bool)> {
+            None
+        }
+    };
+}
+impl Sealed for f32 {
+    floats_keep_no_normals!();
+    #[inline(always)]
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
+        <f32 as super::float::LeanFloat>::sphere_ratios(v, r)
+    }
+    /// `x as f32` (one rounding to nearest), then an exact product by a power of two; the
+    /// conversion through [`i64_to_f32`], the same bits as `as` from the FPU's 32-bit
+    /// conversion.
+    #[inline(always)]
+    fn from_q60(x: i64) -> Self {
+        super::i64_to_f32(x) * (1.0 / (1u64 << 60) as f32)
+    }
+    #[inline(always)]
+    fn from_q60_shl(x: i64, k: u32) -> Self {
+        // 2^(k - 60) from its bits (k <= 61: a normal f32).
+        super::i64_to_f32(x) * f32::from_bits((127 + k.min(61) - 60) << 23)
+    }
+}
+impl Sealed for f64 {
+    floats_keep_no_normals!();
+    #[inline(always)]
+    fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
+        <f64 as super::float::LeanFloat>::sphere_ratios(v, r)
+    }
+    #[inline(always)]
+    fn from_q60(x: i64) -> Self {
+        x as f64 * (1.0 / (1u64 << 60) as f64)
+    }
+    #[inline(always)]
+    fn from_q60_shl(x: i64, k: u32) -> Self {
+        x as f64 * f64::from_bits(u64::from(1023 + k.min(61) - 60) << 52)
+    }
+}
+impl Sealed for super::Fast32 {
+    floats_keep_no_normals!();
+    #[inline(always)]
+    fn from_q60(x: i64) -> Self {
+        super::Fast32(<f32 as Sealed>::from_q60(x))
+    }
+    #[inline(always)]
+    fn from_q60_shl(x: i64, k: u32) -> Self {
+        super::Fast32(<f32 as Sealed>::from_q60_shl(x, k))
+    }
+}
