@@ -328,15 +328,17 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// is within a right angle, `polygon::edge::unclipped_ratio_sum`), the same bits; on
     /// `Fixed22` each of its edges within a right angle takes the arc ratio from its ends' unit
     /// directions instead (each vertex normalized once; per edge 2 dot products, 1 cross
-    /// product, a table's cubic piece: `polygon::edge::unit_ratio_term`), the directions
-    /// rounded to 16 bits (Q15) so that each product is one 32-bit product.
+    /// product, a table's cubic piece: `polygon::edge::unit_ratio_term`), all in 16-bit form
+    /// (directions in Q15, normalized so) so that each product is one 32-bit product.
     /// Measured on a quad (QEMU, median of the budget's 16 inputs): 497 Cortex-M4F
     /// instructions in f32 (at d38eaa0 495: 220 unlit, 495 wholly lit, 744 to 910 clipped; 545 before the
     /// plane test's maximum went off the hot path, each squared length's range was tested
     /// once and `abs` became `VABS.F32`; with the walk alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
-    /// normalization to be shared with the Phong term, 920 with the arc tangent), 3 265
-    /// Cortex-M0 instructions in `Fixed22` (1 052 unlit, 3 265 wholly lit, 4 366 to 6 052
-    /// clipped; with the edge terms' directions in Q22, 1 016, 3 832 and 4 326 to 6 012;
+    /// normalization to be shared with the Phong term, 920 with the arc tangent), 2 182
+    /// Cortex-M0 instructions in `Fixed22` (1 049 unlit, 2 182 wholly lit, 4 355 to 6 045
+    /// clipped; with the directions normalized in Q22 and rounded to Q15 and the ratio in Q22
+    /// products, 1 052, 3 265 and 4 366 to 6 052; with the edge terms' directions in Q22,
+    /// 1 016, 3 832 and 4 326 to 6 012;
     /// 3 886 with the normalization not inlined, before its directions could be
     /// shared with the Phong term, `polygon::VertexDirs`; with the arc-tangent form for every edge 1 114, 4 646 and 4 562 to 6 257, with
     /// the walk alone 1 046, 4 929 and 4 540 to 6 230; 5 073 with the edge

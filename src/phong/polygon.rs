@@ -255,7 +255,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     }
 
     /// [`PolygonLight::phong_at`] with the vertices' unit directions from `p` taken from (and
-    /// added to) `dirs`, which the sample's Lambert term shares ([`VertexDirs`]).
+    /// added to) `dirs`, which the negligibility test shares ([`VertexDirs`]; the Lambert
+    /// term takes its own, in 16-bit form).
     #[inline(always)]
     pub(crate) fn phong_at_with<D: VertexDirections<T>>(
         &self,
@@ -302,8 +303,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 }
                 return;
             }
-            // (A vertex's direction from `dirs`, which the Lambert term and the negligibility
-            // test may have normalized already; a crossing's its own.)
+            // (A vertex's direction from `dirs`, which the negligibility test may have
+            // normalized already; a crossing's its own.)
             // (Without a cache the call of `to_unit`, as before it: measured cheaper in this
             // walk than the inlined normalization.)
             let mut unit = |i: usize, u: Vec3<T>| {
@@ -384,9 +385,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
     /// 11 861 instructions (median of the budget's 16 cases, a case the test does not prove;
     /// 11 860 to 14 604 where the reflection meets the quad; 11 857 before the clipped edges
-    /// carried their vertices' indices for `polygon::VertexDirs`, which spares a polygon
+    /// carried their vertices' indices for `polygon::VertexDirs`, which spared a polygon
     /// light's two terms one normalization of each vertex's direction in
-    /// `Illuminant::diffuse_and_phong`; 12 107 before the fan triangle's
+    /// `Illuminant::diffuse_and_phong` until the Lambert term's went to 16-bit form; 12 107 before the fan triangle's
     /// and the horizon crossings' products lost their saturation tests; 13 448 with every edge from
     /// the offsets' products; in a build of the cases alone, at m = 15, 12 826 against 13 303
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;

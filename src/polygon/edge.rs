@@ -187,9 +187,9 @@ const RATIO_MIN_COS_LOG2: u32 = 16;
 /// `arc_ratio_q15`, the same cubic pieces in 32-bit products) in Q15, the term in Q30.
 /// Bounds (nothing wraps): the components are at most `2^15 + 1`, so each product is below
 /// `2^30 + 2^17`; a dot product or a cross-product component (and each partial sum of one) is
-/// at most the lengths' product, below `2^30 (1 + 2^-12)`; the ratio is at most `pi/2` (`c
-/// >= 0`), below `1.6 2^15`, and `(a x b).k` below `2^15 (1 + 2^-11)`: the term below `1.6
-/// 2^30`.
+/// at most the lengths' product, below `2^30 (1 + 2^-12)`; the ratio is at most `pi/2`
+/// (for `c` at least 0), below `1.6 2^15`, and `(a x b).k` below `2^15 (1 + 2^-11)`: the
+/// term below `1.6 2^30`.
 ///
 /// Measured on the Cortex-M0 (QEMU budget, `polygon_lambert` on a quad, wholly lit): 3 832
 /// instructions with Q22 products, 3 265 with Q15 products from the Q22 directions, 2 507

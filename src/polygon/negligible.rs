@@ -89,8 +89,8 @@ const MAX_VERTICES: usize = 8;
 /// Cost, measured on the Cortex-M0 (`Fixed22`, QEMU): 200 to 680 instructions where the
 /// quick rejection stops it, about 3 000 for the whole test (the module doc).
 ///
-/// The vertices' unit directions from `p` are taken from `dirs` (shared with the sample's
-/// other terms: `VertexDirs`; or `Uncached`).
+/// The vertices' unit directions from `p` are taken from `dirs` (shared with the Phong walk
+/// that follows: `VertexDirs`; or `Uncached`).
 #[inline(never)]
 pub(crate) fn phong_negligible_with<T: Real>(
     verts: &[Vec3<T>],

@@ -32,7 +32,7 @@
 //! |---|---|---|
 //! | the elementary functions' kernels (`sin`, `exp`, `atan2`, ...) | Q30 polynomials and reductions | 8 more bits than the result, so the kernel's own error stays a fraction of the result's LSB (the table above) |
 //! | the Phong polygon's cosine-power recurrence (`polygon::arc`'s `q28`) | Q28 values, Q32 factors in `[0, 1]` | the recurrence runs up to `m + 2 = 257` steps: six more bits than I10F22 keep its drift below the result's LSB |
-//! | the polygon Lambert edge terms' unit directions (`polygon::edge::unit_ratio_term`) | Q15 (cosines and cross products in Q30) | one 32-bit product (`MULS`) each instead of four 16-bit ones: `polygon_lambert` 3 832 -> 3 265 Cortex-M0 instructions, its error against f64 5.5e-6 -> 6.5e-5 (a Lambert term's sensitivity to its directions is about 1: far inside 1/1024) |
+//! | the polygon Lambert edge terms' unit directions (`polygon::edge::unit_ratio_term`), normalized in that form (`normalize::unit_q15`), and their arc ratio (`elementary::arc_ratio_q30_to_q15`) | Q15 (cosines and cross products in Q30; the ratio's cubic pieces with Q16 coefficients and a Q19 offset) | one 32-bit product (`MULS`) each instead of four 16-bit ones, and a reciprocal square root without its Newton step: `polygon_lambert` 3 832 -> 3 265 (Q15 products) -> 2 182 (Q15 normalization and ratio) Cortex-M0 instructions, its error against f64 5.5e-6 -> 6.5e-5 (a Lambert term's sensitivity to its directions is about 1: far inside 1/1024) |
 //!
 //! The Phong terms keep their directions in Q22: at `m = 255` a cosine's error is multiplied
 //! by up to `m`, and `255 x 2^-16 = 3.9e-3` from Q15 directions would exceed the 1/1024.
