@@ -101,7 +101,7 @@
 //!
 //! ## Accuracy
 //!
-//! Measured against an independent quadrature of the definitions (`tests/moments.rs`, m in
+//! Measured against an independent quadrature of the definitions (`tests/moments/`, m in
 //! {0, 1, 2, 3, 16, 63, 64}; absolute errors, the values being at most 2 pi): f64 within
 //! 2e-13 for the raw moments and 5e-12 for the clipped models, including polygons seen nearly
 //! edge-on (p within 1e-12 of their plane) and partly behind either clipping plane; the lune
@@ -461,7 +461,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// `[double_axis_moment]`: `integral over the projection A of (w.u)^m (v.u) du`
     /// (steradians; `w`, `v` any length; signed integrand; no clipping), Arvo eq. 14.
     ///
-    /// Accuracy: see `tests/moments.rs`. Cost: that of [`PolygonLight::axial_moment`] with one
+    /// Accuracy: see `tests/moments/`. Cost: that of [`PolygonLight::axial_moment`] with one
     /// more recurrence step per edge. Fallback: 0 for a zero or non-finite input, `m` out of
     /// range, or `p` in the polygon's plane.
     ///

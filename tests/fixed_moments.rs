@@ -3,7 +3,7 @@
 //! inputs, absolute error (the raw moments are at most 2 pi, the lune pi), target 1/1024 as
 //! every `Fixed22` row (tests/fixed.rs).
 //!
-//! Cases: those of the f32 rows (`tests/moments.rs`): 6000 random polygons, the adversarial
+//! Cases: those of the f32 rows (`tests/moments/`): 6000 random polygons, the adversarial
 //! set (partly behind either clipping plane, nearly edge-on, p near an edge or a vertex,
 //! non-convex) and the extreme edge-on set, each with a second direction from the same
 //! generator, scaled by a power of two into the fixed path's coordinate cube (the moments are
@@ -64,7 +64,7 @@ fn lib<T: Real>(verts: &[V3], model: Model, p: V3, a: V3, b: V3, m: u32) -> Opti
     .map(|x| x.to_f64())
 }
 
-/// The second direction of a case, as in tests/moments.rs: any direction, toward the
+/// The second direction of a case, as in tests/moments/: any direction, toward the
 /// polygon's centroid tilted by up to 0.5 rad, or within 0.05 rad of the polygon's plane.
 fn second_dir(rng: &mut Rng, c: &PolyCase, i: usize) -> V3 {
     match i % 3 {

@@ -34,7 +34,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from the polygon emitting `((-u).axis)+^m` toward `-u`:
     /// `integral over A of ((-u).axis)+^m (n.u)+ du` (Arvo 6.1), in [0, pi].
     ///
-    /// Accuracy: see `tests/moments.rs`. Cost: that of [`PolygonLight::double_axis_moment`] on
+    /// Accuracy: see `tests/moments/`. Cost: that of [`PolygonLight::double_axis_moment`] on
     /// the ring clipped to two planes (at most about twice as many arcs), plus the clipping
     /// (a few multiply-adds per vertex). Fallback: 0 for a zero or non-finite input, `m` out
     /// of range, or `p` in the polygon's plane.

@@ -47,7 +47,7 @@ pub fn try_lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> Result
 /// closed form of the module docs), in [0, pi]; `w`, `v` any length. `2 pi/(m + 2)` for
 /// `w = v`, 0 for `w = -v`.
 ///
-/// Accuracy: see `tests/moments.rs`. Cost: 1 cross product, 1 sqrt, 1 atan2 (even `m`) and
+/// Accuracy: see `tests/moments/`. Cost: 1 cross product, 1 sqrt, 1 atan2 (even `m`) and
 /// `m/2` steps of ~8 operations. Fallback: 0 for a zero or non-finite input or `m` out of range.
 ///
 /// <!-- BEGIN acc-lune_normalization: target/accuracy/model-lune_normalization.md -->
