@@ -181,7 +181,7 @@ pub(crate) fn for_each_unclipped_edge<T: Real>(
     mut edge: impl FnMut(Vec3<T>, Vec3<T>, Vec3<T>) -> bool,
 ) -> bool {
     let kv = [k.x, k.y, k.z];
-    let above = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv) >= T::ZERO;
+    let above = |u: Vec3<T>| T::height_nonneg([u.x, u.y, u.z], kv);
     let sub = |a: Vec3<T>, b: Vec3<T>| a.offset_from(b);
     // Fixed point, whose edge terms cost about 500 Cortex-M0 instructions: every vertex's
     // height first, so that no term is computed for a ring the walk must clip (measured: the

@@ -148,6 +148,19 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
         );
         m < r
     }
+    /// `dot3_small(a, b) >= 0` under its precondition with `b` a unit vector: whether a
+    /// vertex at offset `a` lies above the horizon of the normal `b` (the polygon walks'
+    /// test). This default is that comparison; [`Fixed22`](super::Fixed22) decides it from
+    /// 16-bit products where their error cannot change the sign, the same answer for about a
+    /// third of the Cortex-M0 instructions (`fixed22::sealed`).
+    #[cfg(feature = "polygon")]
+    #[inline(always)]
+    fn height_nonneg(a: [Self; 3], b: [Self; 3]) -> bool
+    where
+        Self: super::Real,
+    {
+        Self::dot3_small(a, b) >= <Self as super::Real>::ZERO
+    }
     /// The unit vector of `v` in Q15 (`i32` components of at most `2^15` in magnitude), `None`
     /// exactly where [`Real::unit3`](super::Real::unit3) is: the directions of the polygon
     /// Lambert edge terms in 16-bit form (`polygon::edge::unit_ratio_term`). This default

@@ -329,3 +329,68 @@ fn unit_q15_is_within_its_error_budget() {
     }
     std::println!("unit_q15 worst component error {worst:e}");
 }
+
+/// `height_nonneg` (the polygon walks' horizon test from 16-bit products) is `dot3_small >=
+/// 0` over its whole precondition: 1 000 000 offsets below 16 of every magnitude against
+/// random unit normals, a third of them moved onto the horizon (`a - (a.b) b`, then nudged
+/// by a few units), and the extreme offsets `+-(2^26 - 1)` against the axes and diagonals.
+#[cfg(feature = "polygon")]
+#[test]
+fn height_sign_from_16_bit_products_is_exact() {
+    use crate::real::sealed::Sealed;
+    let check = |a: [i32; 3], b: [Fixed22; 3]| {
+        let a = a.map(Fixed22::from_bits);
+        assert_eq!(
+            Fixed22::height_nonneg(a, b),
+            Fixed22::dot3_small(a, b) >= Fixed22::ZERO,
+            "{a:?} . {b:?}"
+        );
+    };
+    let mut next = crate::test_rng::xorshift32(0x0DDB_A115);
+    let lim = (1i32 << 26) - 1;
+    let (mut near, mut fast) = (0, 0);
+    for i in 0..1_000_000 {
+        let Some(b) = Fixed22::unit3([0, 1, 2].map(|_| Fixed22::from_bits(next() as i32 >> 8)))
+        else {
+            continue;
+        };
+        let shift = 6 + next() % 26;
+        let mut a = [0, 1, 2].map(|_| ((next() as i32) >> shift).clamp(-lim, lim));
+        if i % 3 == 0 {
+            // Onto the plane through the origin normal to b, then a few units off it.
+            let d = Fixed22::dot3_small(a.map(Fixed22::from_bits), b).to_bits();
+            for (c, bc) in a.iter_mut().zip(b) {
+                let t = ((i64::from(d) * i64::from(bc.to_bits())) >> 22) as i32;
+                *c = (c.wrapping_sub(t) + (next() as i32 >> 27)).clamp(-lim, lim);
+            }
+        }
+        let e: i32 = (0..3).map(|k| (a[k] >> 11) * (b[k].to_bits() >> 8)).sum();
+        if e.abs() < 1 << 18 {
+            near += 1;
+        } else {
+            fast += 1;
+        }
+        check(a, b);
+    }
+    // Both paths taken many times.
+    assert!(near > 100_000 && fast > 100_000, "{near} {fast}");
+    let one = 1i32 << 22;
+    let h = (one as f64 / 3f64.sqrt()) as i32;
+    for b in [
+        [one, 0, 0],
+        [0, -one, 0],
+        [0, 0, one],
+        [h, h, h],
+        [-h, h, -h],
+    ] {
+        let b = b.map(Fixed22::from_bits);
+        for a in [
+            [lim, lim, lim],
+            [-lim, -lim, -lim],
+            [lim, -lim, 0],
+            [-lim, 0, lim],
+        ] {
+            check(a, b);
+        }
+    }
+}
