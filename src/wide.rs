@@ -255,9 +255,10 @@ pub(crate) fn recip_core(d: u32) -> u32 {
                      // d y = 2^63 (1 - e): the high word is 2^31 (1 - e), |e| < 2^-16, so |c| < 2^15.
     let c = (1u32 << 31).wrapping_sub(mul_hi_full(d, y)) as i32;
     let (yh, yl) = ((y >> 16) as i32, (y & 0xFFFF) as i32);
-    let delta = (yh * c + ((yl * c) >> 16)) >> 15; // y e, Q32
-                                                   // The high word's floor can make `c` up to one unit large (`delta` up to 2 units): the
-                                                   // 2 taken off keep `y` below 2^63/d (and below 2^32 where 2^63/d is near 2^32).
+    // `y e`, Q32. The high word's floor can make `c` up to one unit large (`delta` up to 2
+    // units): the 2 taken off keep `y` below 2^63/d (and below 2^32 where 2^63/d is near
+    // 2^32).
+    let delta = (yh * c + ((yl * c) >> 16)) >> 15;
     y.wrapping_add(delta.wrapping_sub(2) as u32)
 }
 

@@ -130,10 +130,12 @@ impl Geometry {
         if [e1, f1, e2, f2].iter().any(|c| c.unsigned_abs() >= 1 << 15) {
             return None;
         }
-        let d = u32::try_from(d).ok().filter(|&d| d > 0)?; // |e1 f2 - e2 f1| < 2^31
-        let n = 32 - d.leading_zeros(); // d in [2^(n-1), 2^n)
-        let r = recip62(d << (32 - n)); // 2^(n + 30) / d, in (2^30, 2^31]
-                                        // Per pixel with BARY_FRAC bits: floor(x r / 2^s), s = n + 30 - 4 - BARY_FRAC.
+        // `d = |e1 f2 - e2 f1| < 2^31`, in `[2^(n-1), 2^n)`; `r = 2^(n + 30) / d`, in `(2^30,
+        // 2^31]`. Per pixel with BARY_FRAC bits: `floor(x r / 2^s)`, `s = n + 30 - 4 -
+        // BARY_FRAC`.
+        let d = u32::try_from(d).ok().filter(|&d| d > 0)?;
+        let n = 32 - d.leading_zeros();
+        let r = recip62(d << (32 - n));
         let s = n + 26 - BARY_FRAC;
         let (rh, rl) = ((r >> 16) as i32, (r & 0xFFFF) as i32); // rh <= 2^15
         let scale = |x: i32| {

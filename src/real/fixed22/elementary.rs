@@ -267,8 +267,9 @@ pub(super) fn rsqrt_core(v: u32) -> (u32, u32, u32) {
 #[inline(always)]
 pub(super) fn rsqrt_core_at(v: u32, j2: u32) -> (u32, u32, u32) {
     let m = v << (30 - j2);
-    let y = rsqrt_seed(m) << 2; // Q32
-                                // m >= 2^31 has a zero low bit (m = v << (30 - j2) and v < 2^31): m/2 is exact, Q29.
+    // The start in Q32. Then `m >= 2^31` has a zero low bit (`m = v << (30 - j2)` and `v <
+    // 2^31`): `m/2` is exact, Q29.
+    let y = rsqrt_seed(m) << 2;
     let (mh, yh) = (m >> 1, y >> 1); // both < 2^31
     let s = mul_hi_u32(mh, yh); // m y, Q28, < 2^29
     let e = mul_hi_u32(s << 2, yh); // m y^2, Q29 (s << 2 < 2^31)
@@ -392,8 +393,9 @@ const ARC_RATIO_CUBICS: [[i32; 4]; 16] = [
 /// `c` above 0) never asks. Within 3.9e-7 of `R` on [0, 1]. About 40 Cortex-M0 instructions.
 #[inline(always)]
 pub(super) fn arc_ratio_bits(c: i32) -> i32 {
-    let x = (1 << FRAC) - c.clamp(0, 1 << FRAC); // [0, 2^22]
-                                                 // The piece (x = 1 belongs to the last one) and the offset in it, below 2^18 + 1.
+    // `x` in [0, 2^22], its piece (x = 1 belongs to the last one) and the offset in it, below
+    // 2^18 + 1.
+    let x = (1 << FRAC) - c.clamp(0, 1 << FRAC);
     let i = ((x >> 18) as usize).min(15);
     let u = x - ((i as i32) << 18);
     let [a0, a1, a2, a3] = match ARC_RATIO_CUBICS.get(i) {
@@ -426,8 +428,9 @@ pub(super) fn arc_ratio_q30_to_q15(c: i32) -> i32 {
 #[cfg(feature = "polygon")]
 #[inline(always)]
 pub(super) fn arc_ratio_q30_to_q22(c: i32) -> i32 {
-    let x = (1 << 30) - c.clamp(0, 1 << 30); // [0, 2^30]
-                                             // The piece (x = 1 belongs to the last one) and the offset in it, in Q19: [0, 2^15].
+    // `x` in [0, 2^30], its piece (x = 1 belongs to the last one) and the offset in it, in
+    // Q19: [0, 2^15].
+    let x = (1 << 30) - c.clamp(0, 1 << 30);
     let i = ((x >> 26) as usize).min(15);
     let u = (x - ((i as i32) << 26)) >> 11;
     let [a0, a1, a2, a3] = match ARC_RATIO_CUBICS.get(i) {
