@@ -277,9 +277,10 @@ impl<T: Real> CapLight<T> {
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
     /// the fillet (out of line) also 1 sqrt and 2 atan2: median 44 instructions a call on the
-    /// Cortex-M4F in f32, 28 with a `UnitVec3`; 400 and 118 on the Cortex-M0 in `Fixed22`
-    /// (QEMU, exact; 52 and 33, 405 and 120 with the fully lit term clamped at both ends;
-    /// 449 and 163 with its products' saturation tests).
+    /// Cortex-M4F in f32, 28 with a `UnitVec3`; 361 and 73 on the Cortex-M0 in `Fixed22`
+    /// (QEMU, exact; 400 and 118 with the cosine's Q22 products, before it went through Q15:
+    /// the sealed `cos_unit`, within 5.3e-5; 52 and 33, 405 and 120 with the fully lit term
+    /// clamped at both ends; 449 and 163 with its products' saturation tests).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-cap_lambert: target/accuracy/model-cap_lambert.md -->
@@ -289,9 +290,7 @@ impl<T: Real> CapLight<T> {
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => {
-                cap_lambert_from_cos(n.dot_unit(self.axis), || self.cos_sigma, self.sin_sigma)
-            }
+            Some(n) => cap_lambert_from_cos(n.cos_to(self.axis), || self.cos_sigma, self.sin_sigma),
             None => T::ZERO,
         }
     }
@@ -321,7 +320,7 @@ impl<T: Real> CapLight<T> {
         match n.to_unit() {
             Some(n) => self
                 .hermite_cos
-                .eval(n.dot_unit(self.axis).clamp(-T::ONE, T::ONE)),
+                .eval(n.cos_to(self.axis).clamp(-T::ONE, T::ONE)),
             None => T::ZERO,
         }
     }
@@ -379,14 +378,14 @@ impl<T: Real> SphereCap<T> {
     /// `[sphere_lambert]` of this cap for the unit normal `n`.
     #[inline(always)]
     pub(crate) fn lambert(&self, n: UnitVec3<T>) -> T {
-        cap_lambert_from_cos(n.dot_unit(self.axis), || self.cs(), self.ss)
+        cap_lambert_from_cos(n.cos_to(self.axis), || self.cs(), self.ss)
     }
 
     /// `[sphere_lambert_hermite]` of this cap for the unit normal `n`: outside the fillet
     /// from `c` alone ([`outside_fillet`]); inside it, sigma and the cubics are built here.
     #[inline(always)]
     pub(crate) fn lambert_hermite(&self, n: UnitVec3<T>) -> T {
-        match outside_fillet(n.dot_unit(self.axis), self.ss, self.ss * self.ss) {
+        match outside_fillet(n.cos_to(self.axis), self.ss, self.ss * self.ss) {
             Some(e) => e,
             None => {
                 let n = n.into_inner();
@@ -517,8 +516,9 @@ impl<T: Real> SphereLight<T> {
     /// Accuracy: measured, below. Cost: 2 normalizations, 1 division (fixed point: no
     /// division, `sin sigma` from the normalization's reciprocal square root); in the
     /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 76 instructions a call on the
-    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 857 and 571 on the Cortex-M0 in `Fixed22`
-    /// (QEMU, exact). Fallback: 0 for a point inside or on the sphere, or a zero or
+    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 824 and 538 on the Cortex-M0 in `Fixed22`
+    /// (QEMU, exact; 857 and 571 with the cosine's Q22 products, before the sealed
+    /// `cos_unit`'s Q15 form, within 5.3e-5). Fallback: 0 for a point inside or on the sphere, or a zero or
     /// non-finite input.
     ///
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->

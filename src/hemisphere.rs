@@ -49,9 +49,11 @@ impl<T: Real> HemisphereLight<T> {
     /// `[hemi_const]`: Lambertian irradiance (normalized, in [0, 1]) from the constant-weighted
     /// hemisphere, `(1 + n.axis)/2` (Snyder eq. 4).
     ///
-    /// Accuracy: 2 ULP plus the normalization of `n`. Cost: 1 normalization (none for a
-    /// [`UnitVec3`]), 1 dot product: 44 instructions a call on the Cortex-M4F
-    /// in f32, 30 with a `UnitVec3`; 376 and 94 on the Cortex-M0 in `Fixed22` (QEMU, exact).
+    /// Accuracy: 2 ULP plus the normalization of `n`; in `Fixed22` the cosine is taken
+    /// through Q15 (within 5.3e-5, so the value within 2.7e-5 plus the normalization's
+    /// rounding). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot product: 44
+    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 339 and 52 on the
+    /// Cortex-M0 in `Fixed22` (QEMU, exact; 376 and 94 with the cosine's Q22 products).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -62,7 +64,7 @@ impl<T: Real> HemisphereLight<T> {
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
             // 1/2 times at most 2 (within rounding): `mul_small`, the bits of `*`.
-            Some(n) => T::mul_small(T::HALF, T::ONE + n.dot_unit(self.axis)).clamp01(),
+            Some(n) => T::mul_small(T::HALF, T::ONE + n.cos_to(self.axis)).clamp01(),
             None => T::ZERO,
         }
     }
@@ -201,10 +203,12 @@ impl<T: Real> SkyGround<T> {
     /// `[sky_ground]`: `sky (1 + n.up)/2 + ground (1 - n.up)/2` per channel: exact for this
     /// radiance (the two hemisphere terms are Snyder eq. 4 for `up` and `-up`).
     ///
-    /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`. Cost: 1
+    /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`; in `Fixed22` the
+    /// cosine is taken through Q15 (within 5.3e-5, times `|sky - ground|/2`). Cost: 1
     /// normalization (none for a [`UnitVec3`]), 1 dot product, 3 multiply-adds:
-    /// 59 instructions a call on the Cortex-M4F in f32, 45 with a `UnitVec3`; 456 and 170 on
-    /// the Cortex-M0 in `Fixed22` (QEMU, exact: the products by `c` skip the saturation test
+    /// 59 instructions a call on the Cortex-M4F in f32, 45 with a `UnitVec3`; 419 and 133 on
+    /// the Cortex-M0 in `Fixed22` (QEMU, exact; 457 and 170 with the cosine's Q22 products;
+    /// the products by `c` skip the saturation test
     /// that a factor of at most 1 never needs, through the crate-internal `mul_unit`; and the
     /// finiteness test of the result is skipped for radiances within 1e30, which cannot
     /// overflow).
@@ -219,7 +223,7 @@ impl<T: Real> SkyGround<T> {
         match n.to_unit() {
             Some(n) => {
                 // sky (1 + c)/2 + ground (1 - c)/2 = mid + half c: one multiply-add a channel.
-                let c = n.dot_unit(self.up).clamp(-T::ONE, T::ONE);
+                let c = n.cos_to(self.up).clamp(-T::ONE, T::ONE);
                 let (m, h) = (self.mid, self.half);
                 // |c| <= 1 and |h| below the type's most negative value (`new`): `mul_unit`.
                 let p = |h: T| T::mul_unit(h, c);

@@ -230,7 +230,7 @@ impl<T: Real> SphereCap<T> {
         r: UnitVec3<T>,
     ) -> (T, T) {
         let cs = self.cs();
-        let diffuse = crate::cap::cap_lambert_from_cos(n.dot_unit(self.axis), || cs, self.ss);
+        let diffuse = crate::cap::cap_lambert_from_cos(n.cos_to(self.axis), || cs, self.ss);
         let (c, s) = cos_sin_between(r, self.axis);
         (diffuse, phong_cap_from_angle(lobe, c, s, cs, self.ss))
     }

@@ -38,6 +38,19 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
+    /// The cosine `a . b` of two unit vectors (each component at most `1 + 2^-20` in
+    /// magnitude, as every `UnitVec3` is) for the Lambert-type terms, whose value moves no
+    /// more than the cosine does (`hemi_const`, `sky_ground`, the exact cap and the sphere):
+    /// [`dot3_small`](Sealed::dot3_small)'s bits on the floats. [`Fixed22`](super::Fixed22)
+    /// rounds both vectors to Q15 and takes the three products as single 32-bit products
+    /// (one `MULS` each on the Cortex-M0, where `dot3_small` takes four), the sum rounded
+    /// from Q30 to Q22: within `2^-16 (|a|_1 + |b|_1) + 2^-23` (at most 5.3e-5 + 1.2e-7) of
+    /// the exact `a . b` of its inputs (`fixed22::kernels::cos_unit_q15`, tested there).
+    /// The Phong terms keep `dot3_small`: their sensitivity to the cosine grows with `m`.
+    #[inline(always)]
+    fn cos_unit(a: [Self; 3], b: [Self; 3]) -> Self {
+        Self::dot3_small(a, b)
+    }
     /// `a - b` componentwise for positions within the fixed-point coordinate limit (each
     /// difference at most 8 in magnitude): the value of [`Vec3`]'s `-`, bit for bit (fixed
     /// point without its saturation tests, which cannot trigger there).

@@ -205,8 +205,9 @@ pub(super) fn beam_of<T: Real>(u: &Uberlight<T>) -> Beam {
     }
 }
 
-/// Relative margin of every culling test: far above the rounding of the per-sample
-/// arithmetic in any backend (f32: 6e-8; Fixed22: 2^-22 of a coordinate <= 4).
+/// Relative margin of every culling test: above the rounding of the per-sample arithmetic
+/// in any backend (f32: 6e-8; Fixed22: 2^-22 of a coordinate <= 4, and the Lambert-type
+/// terms' cosine through Q15, the sealed `cos_unit`, within 5.3e-5).
 const MARGIN: f64 = 1e-4;
 
 pub(super) fn beam_reaches(b: &Beam, o: &ObjectBounds) -> bool {

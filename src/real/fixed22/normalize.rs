@@ -5,7 +5,9 @@
 //! `Real::normalize3`, `Real::unit3` and the sealed `sphere_ratios` are put together from
 //! them; the 16-bit normalization of the polygon edge terms ([`unit_q15`]) is apart.
 
-use super::elementary::{even_top_of_square_sum, rsqrt_core_at, rsqrt_out, rsqrt_seed, sqrt_out};
+#[cfg(feature = "polygon")]
+use super::elementary::rsqrt_seed;
+use super::elementary::{even_top_of_square_sum, rsqrt_core_at, rsqrt_out, sqrt_out};
 use super::kernels::{clz, mul_bits_small};
 use super::{Fixed22, FRAC};
 use crate::Real;

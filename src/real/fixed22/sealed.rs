@@ -183,6 +183,14 @@ impl crate::real::sealed::Sealed for Fixed22 {
         let p = |k: usize| mul_bits_small(a[k].to_bits(), b[k].to_bits());
         Fixed22::from_bits(p(0).wrapping_add(p(1)).wrapping_add(p(2)))
     }
+    /// Through Q15, one 32-bit product a component (`kernels::cos_unit_q15`).
+    #[inline(always)]
+    fn cos_unit(a: [Self; 3], b: [Self; 3]) -> Self {
+        Fixed22::from_bits(cos_unit_q15(
+            a.map(Fixed22::to_bits),
+            b.map(Fixed22::to_bits),
+        ))
+    }
     /// Wrapping subtractions: exact (and so the saturating `-`'s bits) for differences within
     /// the format's range, which positions within the coordinate limit keep.
     #[inline(always)]
