@@ -516,9 +516,11 @@ impl<T: Real> SphereLight<T> {
     /// Accuracy: measured, below. Cost: 2 normalizations, 1 division (fixed point: no
     /// division, `sin sigma` from the normalization's reciprocal square root); in the
     /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 76 instructions a call on the
-    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 824 and 538 on the Cortex-M0 in `Fixed22`
-    /// (QEMU, exact; 857 and 571 with the cosine's Q22 products, before the sealed
-    /// `cos_unit`'s Q15 form, within 5.3e-5). Fallback: 0 for a point inside or on the sphere, or a zero or
+    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 781 and 495 on the Cortex-M0 in `Fixed22`
+    /// (QEMU, exact; 857 and 571 before the cosine went through Q15, the sealed `cos_unit`,
+    /// within 5.3e-5: 824 and 538; the positions' range test to one unsigned comparison a
+    /// coordinate, the sealed `within_coordinate_limit`: 805 and 519; and `r/d`'s product
+    /// without its saturation test, the same bits). Fallback: 0 for a point inside or on the sphere, or a zero or
     /// non-finite input.
     ///
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->

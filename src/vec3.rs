@@ -128,7 +128,7 @@ impl<T: Real> Vec3<T> {
         }
         // Folds away for the float types (no limit); compared in T, where the limit is exact
         // (fixed point: no soft-float f64 per sample).
-        if T::COORDINATE_LIMIT < f64::MAX && !(self.max_abs() <= T::from_f64(T::COORDINATE_LIMIT)) {
+        if T::COORDINATE_LIMIT < f64::MAX && !T::within_coordinate_limit([self.x, self.y, self.z]) {
             return Err(Error::OutOfRange(param));
         }
         Ok(self)

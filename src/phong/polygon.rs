@@ -383,8 +383,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 11 861 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 11 860 to 14 604 where the reflection meets the quad; 11 857 before the clipped edges
+    /// 11 841 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 11 841 to 14 585 where the reflection meets the quad; 11 861 before the positions'
+    /// range test went to one unsigned comparison a coordinate, the sealed
+    /// `within_coordinate_limit`; 11 857 before the clipped edges
     /// carried their vertices' indices for `polygon::VertexDirs`, which spared a polygon
     /// light's two terms one normalization of each vertex's direction in
     /// `Illuminant::diffuse_and_phong` until the Lambert term's went to 16-bit form; 12 107 before the fan triangle's

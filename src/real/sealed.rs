@@ -38,6 +38,20 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
+    /// `max |v_i| <= COORDINATE_LIMIT`: [`Vec3::check_position`](crate::Vec3::check_position)'s
+    /// range test, for the backends with a limit (fixed point; the floats have none and never
+    /// call it). This default compares the largest magnitude;
+    /// [`Fixed22`](super::Fixed22) tests each component's raw bits against the limit's with
+    /// one unsigned comparison, the same answer (a saturated component is beyond it).
+    #[inline(always)]
+    fn within_coordinate_limit(v: [Self; 3]) -> bool
+    where
+        Self: super::Real,
+    {
+        use super::Real as R;
+        let m = R::max(R::max(R::abs(v[0]), R::abs(v[1])), R::abs(v[2]));
+        m <= <Self as R>::from_f64(<Self as R>::COORDINATE_LIMIT)
+    }
     /// The cosine `a . b` of two unit vectors (each component at most `1 + 2^-20` in
     /// magnitude, as every `UnitVec3` is) for the Lambert-type terms, whose value moves no
     /// more than the cosine does (`hemi_const`, `sky_ground`, the exact cap and the sphere):

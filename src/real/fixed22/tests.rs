@@ -450,3 +450,53 @@ fn cos_unit_q15_is_within_its_error_budget() {
     }
     std::println!("cos_unit_q15 worst error {worst:e}");
 }
+
+/// The positions' range test (the sealed `within_coordinate_limit`) answers as the largest
+/// magnitude against the limit in the type's own saturating arithmetic: every triple of the
+/// edges (the type's extremes, the limit's bits and their neighbours) and 1 000 000 random
+/// triples of every magnitude.
+#[test]
+fn coordinate_limit_test_is_the_largest_magnitudes() {
+    use crate::real::sealed::Sealed;
+    let want = |v: [Fixed22; 3]| {
+        let m = Real::max(Real::max(v[0].abs(), v[1].abs()), v[2].abs());
+        m <= Fixed22::from_f64(Fixed22::COORDINATE_LIMIT)
+    };
+    let l = 4i32 << 22;
+    let edges = [
+        i32::MIN,
+        i32::MIN + 1,
+        -l - 1,
+        -l,
+        -l + 1,
+        -1,
+        0,
+        1,
+        l - 1,
+        l,
+        l + 1,
+        i32::MAX,
+    ];
+    for &x in &edges {
+        for &y in &edges {
+            for &z in &edges {
+                let v = [x, y, z].map(Fixed22::from_bits);
+                assert_eq!(
+                    <Fixed22 as Sealed>::within_coordinate_limit(v),
+                    want(v),
+                    "{v:?}"
+                );
+            }
+        }
+    }
+    let mut next = crate::test_rng::xorshift32(0x4C1_3177);
+    let mut inside = 0;
+    for _ in 0..1_000_000 {
+        let shift = next() % 31;
+        let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
+        let w = want(v);
+        inside += usize::from(w);
+        assert_eq!(<Fixed22 as Sealed>::within_coordinate_limit(v), w, "{v:?}");
+    }
+    assert!(inside > 100_000 && inside < 900_000, "{inside}");
+}
