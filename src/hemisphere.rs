@@ -204,11 +204,12 @@ impl<T: Real> SkyGround<T> {
     /// radiance (the two hemisphere terms are Snyder eq. 4 for `up` and `-up`).
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`; in `Fixed22` the
-    /// cosine is taken through Q15 (within 5.3e-5, times `|sky - ground|/2`). Cost: 1
-    /// normalization (none for a [`UnitVec3`]), 1 dot product, 3 multiply-adds:
-    /// 59 instructions a call on the Cortex-M4F in f32, 45 with a `UnitVec3`; 419 and 133 on
-    /// the Cortex-M0 in `Fixed22` (QEMU, exact; 457 and 170 with the cosine's Q22 products;
-    /// the products by `c` skip the saturation test
+    /// cosine is taken through Q15 and kept there (within 6.9e-5, times `|sky - ground|/2`:
+    /// the sealed `scale_by_cos`). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot
+    /// product, 3 multiply-adds: 59 instructions a call on the Cortex-M4F in f32, 45 with a
+    /// `UnitVec3`; 384 and 102 on the Cortex-M0 in `Fixed22` (QEMU, exact; 457 and 170 with
+    /// the cosine and the products in Q22, 419 and 133 with the cosine through Q15 and the
+    /// products in Q22; before, the products by `c` skipped the saturation test
     /// that a factor of at most 1 never needs, through the crate-internal `mul_unit`; and the
     /// finiteness test of the result is skipped for radiances within 1e30, which cannot
     /// overflow).
@@ -222,12 +223,12 @@ impl<T: Real> SkyGround<T> {
     pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
         match n.to_unit() {
             Some(n) => {
-                // sky (1 + c)/2 + ground (1 - c)/2 = mid + half c: one multiply-add a channel.
-                let c = n.cos_to(self.up).clamp(-T::ONE, T::ONE);
+                // sky (1 + c)/2 + ground (1 - c)/2 = mid + half c: one multiply-add a channel,
+                // the cosine clamped to [-1, 1] and `|h|` below the type's most negative value
+                // (`new`): the sealed `scale_by_cos`.
                 let (m, h) = (self.mid, self.half);
-                // |c| <= 1 and |h| below the type's most negative value (`new`): `mul_unit`.
-                let p = |h: T| T::mul_unit(h, c);
-                let e = Rgb::new(m.r + p(h.r), m.g + p(h.g), m.b + p(h.b));
+                let [pr, pg, pb] = T::scale_by_cos([h.r, h.g, h.b], n.array(), self.up.array());
+                let e = Rgb::new(m.r + pr, m.g + pg, m.b + pb);
                 // Only radiances beyond 1e30 can round a channel past the type's range.
                 if self.bounded {
                     e

@@ -65,6 +65,27 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn cos_unit(a: [Self; 3], b: [Self; 3]) -> Self {
         Self::dot3_small(a, b)
     }
+    /// `[h_0 c, h_1 c, h_2 c]` for the cosine `c = a . b` of two unit vectors clamped to
+    /// `[-1, 1]` and any `h` (each above the type's most negative value): `sky_ground`'s
+    /// products. On the floats `c` is [`cos_unit`](Sealed::cos_unit)'s and each product
+    /// [`mul_unit`](Sealed::mul_unit)'s, the same bits as before; [`Fixed22`](super::Fixed22)
+    /// keeps `c` in Q15 and takes each product from two 32-bit products
+    /// (`kernels::scale_by_cos_q15`): within `(5.3e-5 + 2^-16) |h_i| + 2^-22` of `h_i` times
+    /// the exact cosine of its inputs.
+    #[cfg(feature = "hemisphere")]
+    #[inline(always)]
+    fn scale_by_cos(h: [Self; 3], a: [Self; 3], b: [Self; 3]) -> [Self; 3]
+    where
+        Self: super::Real,
+    {
+        let one = <Self as super::Real>::ONE;
+        let c = <Self as super::Real>::clamp(Self::cos_unit(a, b), -one, one);
+        [
+            Self::mul_unit(h[0], c),
+            Self::mul_unit(h[1], c),
+            Self::mul_unit(h[2], c),
+        ]
+    }
     /// `a - b` componentwise for positions within the fixed-point coordinate limit (each
     /// difference at most 8 in magnitude): the value of [`Vec3`]'s `-`, bit for bit (fixed
     /// point without its saturation tests, which cannot trigger there).

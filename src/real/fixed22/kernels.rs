@@ -74,6 +74,28 @@ pub(super) fn cos_unit_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
     s.wrapping_add(1 << 7) >> 8
 }
 
+/// The cosine of [`cos_unit_q15`] in Q15, clamped to `[-1, 1]`: the Q30 sum clamped to
+/// `[-2^30, 2^30]` and rounded half up (within `2^-16` more).
+#[cfg(feature = "hemisphere")]
+#[inline(always)]
+pub(super) fn cos_unit_q15_clamped(a: [i32; 3], b: [i32; 3]) -> i32 {
+    let q = |x: i32| x.wrapping_add(1 << 6) >> 7;
+    let p = |k: usize| q(a[k]).wrapping_mul(q(b[k]));
+    let s = p(0).wrapping_add(p(1)).wrapping_add(p(2));
+    s.clamp(-(1 << 30), 1 << 30).wrapping_add(1 << 14) >> 15
+}
+
+/// `floor(h c / 2^15)` for any `h` (raw bits) and a Q15 factor `|c| <= 2^15`: with `h = hh
+/// 2^16 + hl` (`|hh| <= 2^15`, `hl` in `[0, 2^16)`), `2 hh c + floor(hl c / 2^15)`, two
+/// 32-bit products (`|hl c| < 2^31`). `|h c / 2^15| <= |h|` fits an `i32`, so the wrapping sum
+/// is exact even where `2 hh c` alone reaches `2^31` (`hh = c = -2^15`).
+#[cfg(feature = "hemisphere")]
+#[inline(always)]
+pub(super) fn mul_q15(h: i32, c: i32) -> i32 {
+    let (hh, hl) = (h >> 16, h & 0xFFFF);
+    (hh.wrapping_mul(c) << 1).wrapping_add(hl.wrapping_mul(c) >> 15)
+}
+
 /// [`mul_bits`] by a factor `c` of at most 1 in magnitude (`|c| <= 2^22` raw; any `a` but
 /// `i32::MIN` when `c = -2^22`, whose product `+512` is out of range): the same exact
 /// `floor(a c / 2^22)`, which cannot saturate (`|a c| <= |a|`), so without the range test,

@@ -204,6 +204,16 @@ impl crate::real::sealed::Sealed for Fixed22 {
             b.map(Fixed22::to_bits),
         ))
     }
+    /// The cosine in Q15 (`kernels::cos_unit_q15_clamped`), each product from two 32-bit
+    /// products (`kernels::mul_q15`).
+    #[cfg(feature = "hemisphere")]
+    #[inline(always)]
+    fn scale_by_cos(h: [Self; 3], a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        let c = cos_unit_q15_clamped(a.map(Fixed22::to_bits), b.map(Fixed22::to_bits));
+        let p = |h: Self| Fixed22::from_bits(mul_q15(h.to_bits(), c));
+        // Written out (not `map`, which the M0 build turned into a loop through the stack).
+        [p(h[0]), p(h[1]), p(h[2])]
+    }
     /// Wrapping subtractions: exact (and so the saturating `-`'s bits) for differences within
     /// the format's range, which positions within the coordinate limit keep.
     #[inline(always)]
