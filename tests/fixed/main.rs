@@ -403,8 +403,9 @@ fn rsqrt_within_bound() {
     let mut rng = Rng::new(0x125);
     let mut xs = random_bits(&mut rng, 1_000_000);
     xs.extend(edge_bits());
-    xs.extend(1..1 << 16); // exhaustive over the smallest inputs (results near and above MAX)
-                           // Exhaustive over [1, 1 + 2^-6) and [3.99, 4) in steps of 1 LSB, where the octave changes.
+    // Exhaustive over the smallest inputs (results near and above MAX).
+    xs.extend(1..1 << 16);
+    // Exhaustive over [1, 1 + 2^-6) and [3.99, 4) in steps of 1 LSB, where the octave changes.
     xs.extend((1 << 22)..(1 << 22) + (1 << 16));
     xs.extend((4 << 22) - (1 << 16)..(4 << 22));
     let mut worst = (0.0, 0);

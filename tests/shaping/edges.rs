@@ -86,8 +86,9 @@ pub(super) fn edge_cases_for<T: Real>(name: &str, tol: f64) {
         assert_eq!(sh([big, 0.0, sub]), 0.0);
         assert_eq!(sh([big, big, 1.0]), 0.0);
         assert_eq!(sh([sub, sub, big]), 1.0);
-        assert_eq!(sh([sub, 0.0, sub]), 0.0); // X = 1 > A
-                                              // Non-finite: 0, and try_shape names pos.
+        // X = 1 > A.
+        assert_eq!(sh([sub, 0.0, sub]), 0.0);
+        // Non-finite: 0, and try_shape names pos.
         for p in [
             [f64::NAN, 0.0, 1.0],
             [0.0, f64::INFINITY, 1.0],
@@ -112,8 +113,9 @@ pub(super) fn edge_cases_for<T: Real>(name: &str, tol: f64) {
             format!("book falloff z={z}")
         });
     }
-    assert_eq!(fz(0.5), 0.0); // before the cut-on zone
-                              // At zfar + far_edge (to rounding: 2.8 is not exactly 2 + 0.8): below 1e-14; past it, 0.
+    // Before the cut-on zone.
+    assert_eq!(fz(0.5), 0.0);
+    // At zfar + far_edge (to rounding: 2.8 is not exactly 2 + 0.8): below 1e-14; past it, 0.
     assert!(fz(2.8) <= 1e-14, "{name}: {}", fz(2.8));
     assert_eq!(fz(2.9), 0.0);
     assert_eq!(fz(big), 0.0);
