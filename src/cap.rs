@@ -285,7 +285,7 @@ impl<T: Real> CapLight<T> {
     ///
     /// <!-- BEGIN acc-cap_lambert: target/accuracy/model-cap_lambert.md -->
     /// Measured: f64 within 1.2e-13 of its reference (the independent quadrature); against f64,
-    /// f32 3.3e-7, Fast32 6.6e-6, Fixed22 1.4e-6; 326 486 cases in all (`docs/accuracy.md`).
+    /// f32 3.3e-7, Fast32 6.6e-6, Fixed22 2.9e-5; 326 486 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-cap_lambert -->
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {
@@ -526,7 +526,7 @@ impl<T: Real> SphereLight<T> {
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->
     /// Measured: f64 within 4.4e-16 of its reference (the independent quadrature); against f64,
     /// f32 4.6e-7 (ill-conditioned: 1.7e-6), Fast32 6.4e-6 (ill-conditioned: 6.2e-6), Fixed22
-    /// 8.9e-6; 80 588 cases in all (`docs/accuracy.md`).
+    /// 2.7e-5; 80 588 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert -->
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> T {
@@ -555,7 +555,7 @@ impl<T: Real> SphereLight<T> {
     ///
     /// <!-- BEGIN acc-sphere_lambert_hermite: target/accuracy/model-sphere_lambert_hermite.md -->
     /// Measured: against f64, f32 5.1e-7 (ill-conditioned: 1.6e-6), Fast32 8.9e-6
-    /// (ill-conditioned: 9.2e-6), Fixed22 9.1e-6; 80 216 cases in all (`docs/accuracy.md`).
+    /// (ill-conditioned: 9.2e-6), Fixed22 2.9e-5; 80 216 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert_hermite -->
     #[inline]
     pub fn lambert_hermite(&self, p: Vec3<T>, n: impl Direction<T>) -> T {

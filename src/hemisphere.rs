@@ -58,7 +58,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
     /// Measured: f64 within 5.6e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.6e-7, Fast32 1.6e-7, Fixed22 8.5e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.6e-7, Fast32 1.6e-7, Fixed22 1.9e-5; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_const -->
     #[inline]
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
@@ -217,7 +217,7 @@ impl<T: Real> SkyGround<T> {
     ///
     /// <!-- BEGIN acc-sky_ground: target/accuracy/model-sky_ground.md -->
     /// Measured: f64 within 6.7e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.3e-7, Fast32 1.3e-7, Fixed22 9.4e-7; 205 878 cases in all (`docs/accuracy.md`).
+    /// f32 1.3e-7, Fast32 1.3e-7, Fixed22 2.2e-5; 205 878 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_ground -->
     #[inline]
     pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
