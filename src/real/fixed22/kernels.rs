@@ -68,10 +68,16 @@ pub(super) fn mul_bits_small(a: i32, b: i32) -> i32 {
 /// `dot3_small` takes about 45.
 #[inline(always)]
 pub(super) fn cos_unit_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
+    cos_q30(a, b).wrapping_add(1 << 7) >> 8
+}
+
+/// The sum of [`cos_unit_q15`] in Q30, before its rounding: each component rounded half up
+/// to Q15, the three products summed (the bounds there).
+#[inline(always)]
+fn cos_q30(a: [i32; 3], b: [i32; 3]) -> i32 {
     let q = |x: i32| x.wrapping_add(1 << 6) >> 7;
     let p = |k: usize| q(a[k]).wrapping_mul(q(b[k]));
-    let s = p(0).wrapping_add(p(1)).wrapping_add(p(2));
-    s.wrapping_add(1 << 7) >> 8
+    p(0).wrapping_add(p(1)).wrapping_add(p(2))
 }
 
 /// The cosine of [`cos_unit_q15`] in Q15, clamped to `[-1, 1]`: the Q30 sum clamped to
@@ -79,10 +85,10 @@ pub(super) fn cos_unit_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
 #[cfg(feature = "hemisphere")]
 #[inline(always)]
 pub(super) fn cos_unit_q15_clamped(a: [i32; 3], b: [i32; 3]) -> i32 {
-    let q = |x: i32| x.wrapping_add(1 << 6) >> 7;
-    let p = |k: usize| q(a[k]).wrapping_mul(q(b[k]));
-    let s = p(0).wrapping_add(p(1)).wrapping_add(p(2));
-    s.clamp(-(1 << 30), 1 << 30).wrapping_add(1 << 14) >> 15
+    cos_q30(a, b)
+        .clamp(-(1 << 30), 1 << 30)
+        .wrapping_add(1 << 14)
+        >> 15
 }
 
 /// `floor(h c / 2^15)` for any `h` (raw bits) and a Q15 factor `|c| <= 2^15`: with `h = hh
