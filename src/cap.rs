@@ -520,8 +520,8 @@ impl<T: Real> SphereLight<T> {
     /// (QEMU, exact; 857 and 571 before the cosine went through Q15, the sealed `cos_unit`,
     /// within 5.3e-5: 824 and 538; the positions' range test to one unsigned comparison a
     /// coordinate, the sealed `within_coordinate_limit`: 805 and 519; and `r/d`'s product
-    /// without its saturation test, the same bits). Fallback: 0 for a point inside or on the sphere, or a zero or
-    /// non-finite input.
+    /// without its saturation test, the same bits). Fallback: 0 for a point inside or on the
+    /// sphere, or a zero or non-finite input.
     ///
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->
     /// Measured: f64 within 4.4e-16 of its reference (the independent quadrature); against f64,

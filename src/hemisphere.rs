@@ -207,12 +207,11 @@ impl<T: Real> SkyGround<T> {
     /// cosine is taken through Q15 and kept there (within 6.9e-5, times `|sky - ground|/2`:
     /// the sealed `scale_by_cos`). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot
     /// product, 3 multiply-adds: 59 instructions a call on the Cortex-M4F in f32, 45 with a
-    /// `UnitVec3`; 384 and 102 on the Cortex-M0 in `Fixed22` (QEMU, exact; 457 and 170 with
-    /// the cosine and the products in Q22, 419 and 133 with the cosine through Q15 and the
-    /// products in Q22; before, the products by `c` skipped the saturation test
-    /// that a factor of at most 1 never needs, through the crate-internal `mul_unit`; and the
-    /// finiteness test of the result is skipped for radiances within 1e30, which cannot
-    /// overflow).
+    /// `UnitVec3`; 383 and 102 on the Cortex-M0 in `Fixed22` (QEMU, exact; 456 and 170 with
+    /// the cosine and the products in Q22; before, the products by `c` skipped the saturation
+    /// test that a factor of at most 1 never needs, through the crate-internal `mul_unit`;
+    /// and the finiteness test of the result is skipped for radiances within 1e30, which
+    /// cannot overflow).
     /// Fallback: black for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-sky_ground: target/accuracy/model-sky_ground.md -->

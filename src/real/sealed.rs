@@ -52,8 +52,8 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
         let m = R::max(R::max(R::abs(v[0]), R::abs(v[1])), R::abs(v[2]));
         m <= <Self as R>::from_f64(<Self as R>::COORDINATE_LIMIT)
     }
-    /// The cosine `a . b` of two unit vectors (each component at most `1 + 2^-20` in
-    /// magnitude, as every `UnitVec3` is) for the Lambert-type terms, whose value moves no
+    /// The cosine `a . b` of two unit vectors (each component at most `1 + 2^-16` in
+    /// magnitude, which every `UnitVec3` keeps) for the Lambert-type terms, whose value moves no
     /// more than the cosine does (`hemi_const`, `sky_ground`, the exact cap and the sphere):
     /// [`dot3_small`](Sealed::dot3_small)'s bits on the floats. [`Fixed22`](super::Fixed22)
     /// rounds both vectors to Q15 and takes the three products as single 32-bit products
@@ -70,7 +70,7 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     /// products. On the floats `c` is [`cos_unit`](Sealed::cos_unit)'s and each product
     /// [`mul_unit`](Sealed::mul_unit)'s, the same bits as before; [`Fixed22`](super::Fixed22)
     /// keeps `c` in Q15 and takes each product from two 32-bit products
-    /// (`kernels::scale_by_cos_q15`): within `(5.3e-5 + 2^-16) |h_i| + 2^-22` of `h_i` times
+    /// (`kernels::cos_unit_q15_clamped`, `kernels::mul_q15`): within `(5.3e-5 + 2^-16) |h_i| + 2^-22` of `h_i` times
     /// the exact cosine of its inputs.
     #[cfg(feature = "hemisphere")]
     #[inline(always)]
