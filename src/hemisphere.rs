@@ -13,7 +13,7 @@
 //! `w` is computed as `atan2(|n x axis|, n.axis)`, accurate at both ends of [0, pi], where
 //! `acos(n.axis)` loses half its digits.
 
-use crate::unit::Direction;
+use crate::unit::{Direction, LightAxis};
 use crate::vec3::angle_to;
 use crate::{Error, Real, Rgb, UnitVec3, Vec3};
 
@@ -21,7 +21,7 @@ use crate::{Error, Real, Rgb, UnitVec3, Vec3};
 /// cosine weighted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct HemisphereLight<T> {
-    axis: UnitVec3<T>,
+    axis: LightAxis<T>,
 }
 
 impl<T: Real> HemisphereLight<T> {
@@ -31,19 +31,19 @@ impl<T: Real> HemisphereLight<T> {
     /// [`Error::NotFinite`] or [`Error::ZeroLength`] for a bad `axis`.
     pub fn new(axis: Vec3<T>) -> Result<Self, Error> {
         Ok(HemisphereLight {
-            axis: UnitVec3::try_new(axis, "axis")?,
+            axis: LightAxis::new(UnitVec3::try_new(axis, "axis")?),
         })
     }
 
     /// The unit axis.
     pub fn axis(&self) -> Vec3<T> {
-        self.axis.into_inner()
+        self.axis.unit().into_inner()
     }
     /// The unit axis, typed (for the Phong integrals).
     #[inline(always)]
     #[cfg(feature = "phong")]
     pub(crate) fn unit_axis(&self) -> UnitVec3<T> {
-        self.axis
+        self.axis.unit()
     }
 
     /// `[hemi_const]`: Lambertian irradiance (normalized, in [0, 1]) from the constant-weighted
@@ -52,8 +52,9 @@ impl<T: Real> HemisphereLight<T> {
     /// Accuracy: 2 ULP plus the normalization of `n`; in `Fixed22` the cosine is taken
     /// through Q15 (within 5.3e-5, so the value within 2.7e-5 plus the normalization's
     /// rounding). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot product: 44
-    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 339 and 52 on the
-    /// Cortex-M0 in `Fixed22` (QEMU, exact; 376 and 94 with the cosine's Q22 products).
+    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 332 and 45 on the
+    /// Cortex-M0 in `Fixed22` (QEMU, exact; 376 and 94 with the cosine's Q22 products, 339
+    /// and 52 with the axis rounded to Q15 on every call instead of once by `new`).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -64,7 +65,7 @@ impl<T: Real> HemisphereLight<T> {
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
             // 1/2 times at most 2 (within rounding): `mul_small`, the bits of `*`.
-            Some(n) => T::mul_small(T::HALF, T::ONE + n.cos_to(self.axis)).clamp01(),
+            Some(n) => T::mul_small(T::HALF, T::ONE + self.axis.cos_from(n)).clamp01(),
             None => T::ZERO,
         }
     }
@@ -82,7 +83,7 @@ impl<T: Real> HemisphereLight<T> {
     /// <!-- END acc-hemi_cos -->
     #[inline]
     pub fn lambert_cos(&self, n: impl Direction<T>) -> T {
-        match angle_to(n, self.axis) {
+        match angle_to(n, self.axis.unit()) {
             Some((c, s, w)) => hemi_cos_from_angle(c, s, w),
             None => T::ZERO,
         }
@@ -121,7 +122,7 @@ impl<T: Real> OvercastSky<T> {
 
     /// The unit zenith direction.
     pub fn zenith(&self) -> Vec3<T> {
-        self.sky.axis.into_inner()
+        self.sky.axis.unit().into_inner()
     }
     /// The zenith luminance `C`.
     pub fn zenith_luminance(&self) -> T {
@@ -139,7 +140,7 @@ impl<T: Real> OvercastSky<T> {
     /// <!-- END acc-sky_overcast -->
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {
-        match angle_to(n, self.sky.axis) {
+        match angle_to(n, self.sky.axis.unit()) {
             Some((c, s, w)) => {
                 let third = T::from_f64(1.0 / 3.0);
                 let e_const = (T::HALF * (T::ONE + c)).clamp01();
@@ -155,7 +156,7 @@ impl<T: Real> OvercastSky<T> {
 /// (June section 20.2, eq. 20.7).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SkyGround<T> {
-    up: UnitVec3<T>,
+    up: LightAxis<T>,
     sky: Rgb<T>,
     ground: Rgb<T>,
     /// `(sky + ground)/2` and `(sky - ground)/2`, each as `sky/2 +- ground/2` (no overflow):
@@ -176,7 +177,7 @@ impl<T: Real> SkyGround<T> {
         let (sky, ground) = (sky.check_finite("sky")?, ground.check_finite("ground")?);
         let (s, g) = (sky.scale(T::HALF), ground.scale(T::HALF));
         Ok(SkyGround {
-            up: UnitVec3::try_new(up, "up")?,
+            up: LightAxis::new(UnitVec3::try_new(up, "up")?),
             sky,
             ground,
             mid: Rgb::new(s.r + g.r, s.g + g.g, s.b + g.b),
@@ -189,7 +190,7 @@ impl<T: Real> SkyGround<T> {
 
     /// The unit up direction.
     pub fn up(&self) -> Vec3<T> {
-        self.up.into_inner()
+        self.up.unit().into_inner()
     }
     /// The sky radiance (the hemisphere around `up`).
     pub fn sky(&self) -> Rgb<T> {
@@ -205,9 +206,11 @@ impl<T: Real> SkyGround<T> {
     ///
     /// Accuracy: 3 ULP of the largest colour plus the normalization of `n`; in `Fixed22` the
     /// cosine is taken through Q15 and kept there (within 6.9e-5, times `|sky - ground|/2`:
-    /// the sealed `scale_by_cos`). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot
+    /// the sealed `mix_by_cos`). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot
     /// product, 3 multiply-adds: 59 instructions a call on the Cortex-M4F in f32, 45 with a
-    /// `UnitVec3`; 383 and 102 on the Cortex-M0 in `Fixed22` (QEMU, exact; 456 and 170 with
+    /// `UnitVec3`; 371 and 90 on the Cortex-M0 in `Fixed22` (QEMU, exact; 383 and 102 with
+    /// the axis rounded to Q15 on every call and the sums' saturation tests, which `mid` and
+    /// `half` make unreachable; 456 and 170 with
     /// the cosine and the products in Q22; before, the products by `c` skipped the saturation
     /// test that a factor of at most 1 never needs, through the crate-internal `mul_unit`;
     /// and the finiteness test of the result is skipped for radiances within 1e30, which
@@ -223,11 +226,16 @@ impl<T: Real> SkyGround<T> {
         match n.to_unit() {
             Some(n) => {
                 // sky (1 + c)/2 + ground (1 - c)/2 = mid + half c: one multiply-add a channel,
-                // the cosine clamped to [-1, 1] and `|h|` below the type's most negative value
-                // (`new`): the sealed `scale_by_cos`.
+                // the cosine clamped to [-1, 1], `mid` and `half` the sum and the difference of
+                // `sky/2` and `ground/2` (`new`): the sealed `mix_by_cos`.
                 let (m, h) = (self.mid, self.half);
-                let [pr, pg, pb] = T::scale_by_cos([h.r, h.g, h.b], n.array(), self.up.array());
-                let e = Rgb::new(m.r + pr, m.g + pg, m.b + pb);
+                let [r, g, b] = T::mix_by_cos(
+                    [m.r, m.g, m.b],
+                    [h.r, h.g, h.b],
+                    n.array(),
+                    self.up.prepared(),
+                );
+                let e = Rgb::new(r, g, b);
                 // Only radiances beyond 1e30 can round a channel past the type's range.
                 if self.bounded {
                     e

@@ -17,7 +17,7 @@
 //! Cost: a call with a `UnitVec3` skips the normalization the call makes of a `Vec3`, measured
 //! (exact QEMU counts of the same calls both ways, the README's "With a unit normal"): 6 to
 //! 43 instructions per call on the Cortex-M4F in f32 (`hemi_const` 47 -> 30), 276 to 316 on the
-//! Cortex-M0 in `Fixed22` (`hemi_const` 339 -> 52), 249 to 267 on RV32IMC in `Fixed22`.
+//! Cortex-M0 in `Fixed22` (`hemi_const` 332 -> 45), 249 to 267 on RV32IMC in `Fixed22`.
 
 use crate::{Error, Real, Vec3};
 use core::ops::{Deref, Neg};
@@ -141,6 +141,49 @@ impl<T: Real> UnitVec3<T> {
     #[cfg_attr(not(feature = "raster"), allow(dead_code))] // the rasterizer's (reflect, view)
     pub(crate) fn new_unchecked(v: Vec3<T>) -> Self {
         UnitVec3(v)
+    }
+}
+
+/// A light's fixed unit axis, with the form the Lambert-type cosine takes of it prepared once
+/// (the sealed `prepare_axis`: in fixed point its Q15 rounding, which
+/// [`UnitVec3::cos_to`] makes on every call; on the floats the axis itself).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(dead_code)] // the families with an axis; unused when none of them is enabled
+pub(crate) struct LightAxis<T> {
+    unit: UnitVec3<T>,
+    prepared: [T; 3],
+}
+
+#[allow(dead_code)] // as `LightAxis`
+impl<T: Real> LightAxis<T> {
+    /// The axis `unit`, prepared.
+    #[inline]
+    pub(crate) fn new(unit: UnitVec3<T>) -> Self {
+        LightAxis {
+            unit,
+            prepared: T::prepare_axis(unit.array()),
+        }
+    }
+    /// The unit axis.
+    #[inline(always)]
+    pub(crate) fn unit(&self) -> UnitVec3<T> {
+        self.unit
+    }
+    /// The unit axis, borrowed.
+    #[inline(always)]
+    pub(crate) fn unit_ref(&self) -> &UnitVec3<T> {
+        &self.unit
+    }
+    /// `n.cos_to(self.unit())`, bit for bit, without the axis's rounding (the sealed
+    /// `cos_axis`).
+    #[inline(always)]
+    pub(crate) fn cos_from(&self, n: UnitVec3<T>) -> T {
+        T::cos_axis(n.array(), self.prepared)
+    }
+    /// The prepared form (the sealed `mix_by_cos`).
+    #[inline(always)]
+    pub(crate) fn prepared(&self) -> [T; 3] {
+        self.prepared
     }
 }
 

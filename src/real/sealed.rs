@@ -65,25 +65,44 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn cos_unit(a: [Self; 3], b: [Self; 3]) -> Self {
         Self::dot3_small(a, b)
     }
-    /// `[h_0 c, h_1 c, h_2 c]` for the cosine `c = a . b` of two unit vectors clamped to
-    /// `[-1, 1]` and any `h` (each above the type's most negative value): `sky_ground`'s
-    /// products. On the floats `c` is [`cos_unit`](Sealed::cos_unit)'s and each product
-    /// [`mul_unit`](Sealed::mul_unit)'s, the same bits as before; [`Fixed22`](super::Fixed22)
-    /// keeps `c` in Q15 and takes each product from two 32-bit products
-    /// (`kernels::cos_unit_q15_clamped`, `kernels::mul_q15`): within `(5.3e-5 + 2^-16) |h_i| + 2^-22` of `h_i` times
-    /// the exact cosine of its inputs.
+    /// A light's fixed unit axis `b` in the form [`cos_axis`](Sealed::cos_axis) takes, made
+    /// once at the light's construction: on the floats `b` itself; on
+    /// [`Fixed22`](super::Fixed22) its components rounded to Q15 (held in the raw bits), the
+    /// rounding that `cos_unit` makes of `b` on every call (about 6 Cortex-M0 instructions).
+    #[inline(always)]
+    fn prepare_axis(b: [Self; 3]) -> [Self; 3] {
+        b
+    }
+    /// [`cos_unit`](Sealed::cos_unit)`(a, b)`, bit for bit, from `bq =
+    /// prepare_axis(b)`.
+    #[inline(always)]
+    fn cos_axis(a: [Self; 3], bq: [Self; 3]) -> Self {
+        Self::cos_unit(a, bq)
+    }
+    /// `mid + half c` componentwise, for the cosine `c = a . b` of two unit vectors clamped to
+    /// `[-1, 1]` (`b` a light's axis, `bq = prepare_axis(b)`):
+    /// `sky_ground`'s irradiance. Precondition: `mid = s + g` and `half = s - g` for `s` and
+    /// `g` each within half the type's range (`SkyGround::new` makes them so from its
+    /// colours: `s = sky/2`, `g = ground/2`), so that `mid + half c` lies between `2 s` and
+    /// `2 g` for every `|c| <= 1`. On the floats `c` is [`cos_unit`](Sealed::cos_unit)'s and
+    /// each product [`mul_unit`](Sealed::mul_unit)'s, the sum `+`: the same bits as before;
+    /// [`Fixed22`](super::Fixed22) keeps `c` in Q15, takes each product from two 32-bit
+    /// products (`kernels::cos_prepared_q15_clamped`, `kernels::mul_q15`: within `(5.3e-5 +
+    /// 2^-16) |half_i| + 2^-22` of `half_i` times the exact cosine of its inputs) and adds
+    /// without the saturation test, which the precondition makes unreachable
+    /// (`kernels::mix_by_cos`).
     #[cfg(feature = "hemisphere")]
     #[inline(always)]
-    fn scale_by_cos(h: [Self; 3], a: [Self; 3], b: [Self; 3]) -> [Self; 3]
+    fn mix_by_cos(mid: [Self; 3], half: [Self; 3], a: [Self; 3], bq: [Self; 3]) -> [Self; 3]
     where
         Self: super::Real,
     {
         let one = <Self as super::Real>::ONE;
-        let c = <Self as super::Real>::clamp(Self::cos_unit(a, b), -one, one);
+        let c = <Self as super::Real>::clamp(Self::cos_axis(a, bq), -one, one);
         [
-            Self::mul_unit(h[0], c),
-            Self::mul_unit(h[1], c),
-            Self::mul_unit(h[2], c),
+            mid[0] + Self::mul_unit(half[0], c),
+            mid[1] + Self::mul_unit(half[1], c),
+            mid[2] + Self::mul_unit(half[2], c),
         ]
     }
     /// `a - b` componentwise for positions within the fixed-point coordinate limit (each

@@ -68,27 +68,55 @@ pub(super) fn mul_bits_small(a: i32, b: i32) -> i32 {
 /// `dot3_small` takes about 45.
 #[inline(always)]
 pub(super) fn cos_unit_q15(a: [i32; 3], b: [i32; 3]) -> i32 {
-    cos_q30(a, b).wrapping_add(1 << 7) >> 8
+    // Written out (not `map`, which the M0 build turned into a loop through the stack).
+    cos_prepared_q15(a, [q15(b[0]), q15(b[1]), q15(b[2])])
 }
 
-/// The sum of [`cos_unit_q15`] in Q30, before its rounding: each component rounded half up
-/// to Q15, the three products summed (the bounds there).
+/// `x 2^-22` (raw Q22 bits, at most `2^22 + 2^6` in magnitude) rounded half up to Q15: `(x
+/// + 2^6) >> 7`, at most `2^15` in magnitude. [`cos_unit_q15`]'s rounding of each component,
+/// made once for a light's fixed axis (the sealed `prepare_axis`).
 #[inline(always)]
-fn cos_q30(a: [i32; 3], b: [i32; 3]) -> i32 {
-    let q = |x: i32| x.wrapping_add(1 << 6) >> 7;
-    let p = |k: usize| q(a[k]).wrapping_mul(q(b[k]));
+pub(super) fn q15(x: i32) -> i32 {
+    x.wrapping_add(1 << 6) >> 7
+}
+
+/// [`cos_unit_q15`]`(a, b)`, bit for bit, with `bq` the rounding [`q15`] of `b`'s
+/// components, made once.
+#[inline(always)]
+pub(super) fn cos_prepared_q15(a: [i32; 3], bq: [i32; 3]) -> i32 {
+    cos_q30(a, bq).wrapping_add(1 << 7) >> 8
+}
+
+/// The sum of [`cos_unit_q15`] in Q30, before its rounding: each component of `a` rounded
+/// half up to Q15 ([`q15`]), the three products by `bq` (`b`'s, rounded) summed (the
+/// bounds there).
+#[inline(always)]
+fn cos_q30(a: [i32; 3], bq: [i32; 3]) -> i32 {
+    let p = |k: usize| q15(a[k]).wrapping_mul(bq[k]);
     p(0).wrapping_add(p(1)).wrapping_add(p(2))
 }
 
-/// The cosine of [`cos_unit_q15`] in Q15, clamped to `[-1, 1]`: the Q30 sum clamped to
-/// `[-2^30, 2^30]` and rounded half up (within `2^-16` more).
+/// The cosine of [`cos_unit_q15`] in Q15 (from `a` and `b`'s rounding `bq`), clamped to
+/// `[-1, 1]`: the Q30 sum clamped to `[-2^30, 2^30]` and rounded half up (within `2^-16`
+/// more).
 #[cfg(feature = "hemisphere")]
 #[inline(always)]
-pub(super) fn cos_unit_q15_clamped(a: [i32; 3], b: [i32; 3]) -> i32 {
-    cos_q30(a, b)
+pub(super) fn cos_prepared_q15_clamped(a: [i32; 3], bq: [i32; 3]) -> i32 {
+    cos_q30(a, bq)
         .clamp(-(1 << 30), 1 << 30)
         .wrapping_add(1 << 14)
         >> 15
+}
+
+/// `m + floor(h c / 2^15)` ([`mul_q15`]) for a Q15 factor `|c| <= 2^15`, with a wrapping
+/// sum, for `m = s + g` and `h = s - g` with `s` and `g` in `[-2^30, 2^30)` (the sealed
+/// `mix_by_cos`'s precondition): `h c / 2^15` lies in `[-|h|, |h|]`, so does its floor
+/// (`|h|` is an integer), and the sum lies in `[2 min(s, g), 2 max(s, g)]`, inside an `i32`:
+/// the saturating sum's bits, without its test (`tests.rs`: the edges of `s`, `g` and `c`).
+#[cfg(feature = "hemisphere")]
+#[inline(always)]
+pub(super) fn mix_by_cos(m: i32, h: i32, c: i32) -> i32 {
+    m.wrapping_add(mul_q15(h, c))
 }
 
 /// `floor(h c / 2^15)` for any `h` (raw bits) and a Q15 factor `|c| <= 2^15`: with `h = hh

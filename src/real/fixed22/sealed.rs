@@ -25,6 +25,11 @@ impl crate::real::sealed::Sealed for Fixed22 {
     fn kept_normals(kept: &Self::KeptNormals) -> Option<([crate::Vec3<Self>; 3], bool)> {
         *kept
     }
+    /// Each component rounded half up to Q15 (`kernels::q15`), held in the raw bits.
+    #[inline(always)]
+    fn prepare_axis(b: [Self; 3]) -> [Self; 3] {
+        b.map(|x| Fixed22::from_bits(q15(x.to_bits())))
+    }
     /// `-r < c < r` for each component as `(c + r) as u32 < 2r - 1` (wrapping: a component
     /// at `i32::MIN` or `MAX` falls outside for any `r` below 256; `r <= 0`: `false`).
     #[cfg(any(feature = "polygon", feature = "raster"))]
@@ -204,15 +209,23 @@ impl crate::real::sealed::Sealed for Fixed22 {
             b.map(Fixed22::to_bits),
         ))
     }
-    /// The cosine in Q15 (`kernels::cos_unit_q15_clamped`), each product from two 32-bit
-    /// products (`kernels::mul_q15`).
+    /// With `b`'s components rounded to Q15 once (`kernels::cos_prepared_q15`).
+    #[inline(always)]
+    fn cos_axis(a: [Self; 3], bq: [Self; 3]) -> Self {
+        Fixed22::from_bits(cos_prepared_q15(
+            a.map(Fixed22::to_bits),
+            bq.map(Fixed22::to_bits),
+        ))
+    }
+    /// The cosine in Q15 (`kernels::cos_prepared_q15_clamped`), each product from two 32-bit
+    /// products, the sums without saturation test (`kernels::mix_by_cos`).
     #[cfg(feature = "hemisphere")]
     #[inline(always)]
-    fn scale_by_cos(h: [Self; 3], a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
-        let c = cos_unit_q15_clamped(a.map(Fixed22::to_bits), b.map(Fixed22::to_bits));
-        let p = |h: Self| Fixed22::from_bits(mul_q15(h.to_bits(), c));
+    fn mix_by_cos(mid: [Self; 3], half: [Self; 3], a: [Self; 3], bq: [Self; 3]) -> [Self; 3] {
+        let c = cos_prepared_q15_clamped(a.map(Fixed22::to_bits), bq.map(Fixed22::to_bits));
+        let e = |k: usize| Fixed22::from_bits(mix_by_cos(mid[k].to_bits(), half[k].to_bits(), c));
         // Written out (not `map`, which the M0 build turned into a loop through the stack).
-        [p(h[0]), p(h[1]), p(h[2])]
+        [e(0), e(1), e(2)]
     }
     /// Wrapping subtractions: exact (and so the saturating `-`'s bits) for differences within
     /// the format's range, which positions within the coordinate limit keep.
