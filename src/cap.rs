@@ -33,7 +33,7 @@
 //! Beside it, [`CapLight::lambert_hermite_cos`] places the same two segments in `c = cos w`
 //! (slopes `dE/dc = E'(w)/(-sin w)`): no arc cosine, and a smaller error for `sigma <= pi/4`.
 
-use crate::unit::{Direction, LightAxis};
+use crate::unit::Direction;
 use crate::{Error, Real, UnitVec3, Vec3};
 
 /// Exact cap irradiance (normalized) from `c = n.axis`, `cs = cos sigma` (called only in the
@@ -218,12 +218,12 @@ impl<T: Real> HermiteFilletCos<T> {
 /// angular size, e.g. the sun).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CapLight<T> {
+    axis: UnitVec3<T>,
     sigma: T,
     cos_sigma: T,
     sin_sigma: T,
     hermite: HermiteFillet<T>,
     hermite_cos: HermiteFilletCos<T>,
-    axis: LightAxis<T>,
 }
 
 impl<T: Real> CapLight<T> {
@@ -244,7 +244,7 @@ impl<T: Real> CapLight<T> {
         }
         let (cs, ss) = (sigma.cos().clamp01(), sigma.sin().clamp01());
         Ok(CapLight {
-            axis: LightAxis::new(axis),
+            axis,
             sigma,
             cos_sigma: cs,
             sin_sigma: ss,
@@ -255,13 +255,13 @@ impl<T: Real> CapLight<T> {
 
     /// The unit axis.
     pub fn axis(&self) -> Vec3<T> {
-        self.axis.unit().into_inner()
+        self.axis.into_inner()
     }
     /// The unit axis, typed (for the Phong integrals).
     #[inline(always)]
     #[cfg(feature = "phong")]
     pub(crate) fn unit_axis(&self) -> UnitVec3<T> {
-        self.axis.unit()
+        self.axis
     }
     /// The half-angle sigma.
     pub fn sigma(&self) -> T {
@@ -277,9 +277,8 @@ impl<T: Real> CapLight<T> {
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
     /// the fillet (out of line) also 1 sqrt and 2 atan2: median 44 instructions a call on the
-    /// Cortex-M4F in f32, 28 with a `UnitVec3`; 354 and 68 on the Cortex-M0 in `Fixed22`
-    /// (QEMU, exact; 361 and 73 with the axis rounded to Q15 on every call, not once by
-    /// `new`; 400 and 118 with the cosine's Q22 products, before it went through Q15:
+    /// Cortex-M4F in f32, 28 with a `UnitVec3`; 361 and 73 on the Cortex-M0 in `Fixed22`
+    /// (QEMU, exact; 400 and 118 with the cosine's Q22 products, before it went through Q15:
     /// the sealed `cos_unit`, within 5.3e-5; 52 and 33, 405 and 120 with the fully lit term
     /// clamped at both ends; 449 and 163 with its products' saturation tests).
     /// Fallback: 0 for a zero or non-finite `n`.
@@ -291,9 +290,7 @@ impl<T: Real> CapLight<T> {
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => {
-                cap_lambert_from_cos(self.axis.cos_from(n), || self.cos_sigma, self.sin_sigma)
-            }
+            Some(n) => cap_lambert_from_cos(n.cos_to(self.axis), || self.cos_sigma, self.sin_sigma),
             None => T::ZERO,
         }
     }
@@ -323,7 +320,7 @@ impl<T: Real> CapLight<T> {
         match n.to_unit() {
             Some(n) => self
                 .hermite_cos
-                .eval(self.axis.cos_from(n).clamp(-T::ONE, T::ONE)),
+                .eval(n.cos_to(self.axis).clamp(-T::ONE, T::ONE)),
             None => T::ZERO,
         }
     }
@@ -334,10 +331,8 @@ impl<T: Real> CapLight<T> {
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and the chord's squared length
     /// `|n - axis|^2` (`c = 1 - |n - axis|^2/2`, accurate near 1); only in the fillet (out of
     /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 50 instructions a call
-    /// on the Cortex-M4F in f32, 33 with a `UnitVec3`; 448 and 160 on the Cortex-M0 in
-    /// `Fixed22` (QEMU, exact; before the fillet test, 179/158 and 1499/1167; 444 and 158
-    /// before the exact cap's axis grew by its Q15 form, which moved this light's fields in
-    /// the budget's image beyond the M0's short load offsets).
+    /// on the Cortex-M4F in f32, 33 with a `UnitVec3`; 444 and 158 on the Cortex-M0 in
+    /// `Fixed22` (QEMU, exact; before the fillet test, 179/158 and 1499/1167).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-cap_lambert_hermite: target/accuracy/model-cap_lambert_hermite.md -->
@@ -347,9 +342,7 @@ impl<T: Real> CapLight<T> {
     #[inline]
     pub fn lambert_hermite(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            Some(n) => self
-                .hermite
-                .eval_unit(n, self.axis.unit_ref(), self.sin_sigma),
+            Some(n) => self.hermite.eval_unit(n, &self.axis, self.sin_sigma),
             None => T::ZERO,
         }
     }
