@@ -383,8 +383,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 11 841 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 11 841 to 14 585 where the reflection meets the quad; 11 861 before the positions'
+    /// 11 508 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 11 508 to 14 141 where the reflection meets the quad; 11 841 before the recurrence's
+    /// products kept the middle partial product whole, `wide::mul_q32`; 11 861 before the positions'
     /// range test went to one unsigned comparison a coordinate, the sealed
     /// `within_coordinate_limit`; 11 857 before the clipped edges
     /// carried their vertices' indices for `polygon::VertexDirs`, which spared a polygon
