@@ -169,11 +169,6 @@ impl<T: Real> LightAxis<T> {
     pub(crate) fn unit(&self) -> UnitVec3<T> {
         self.unit
     }
-    /// The unit axis, borrowed.
-    #[inline(always)]
-    pub(crate) fn unit_ref(&self) -> &UnitVec3<T> {
-        &self.unit
-    }
     /// `n.cos_to(self.unit())`, bit for bit, without the axis's rounding (the sealed
     /// `cos_axis`).
     #[inline(always)]

@@ -6,10 +6,10 @@
 use super::kernels::{clz, mul_hi_full, mul_hi_u32, recip_core, wide_mul};
 use super::FRAC;
 
-/// `x * y` of two Q30 values with `|x|, |y| < 2` (so each fits an `i32`), rounded down.
+/// `x * y` of two Q30 values with `|x|, |y| < 2` (so each fits an `i32`; a precondition its
+/// callers keep: beyond it the factors are truncated to 32 bits, never a panic), rounded down.
 #[inline(always)]
 pub(super) fn mul_q30(x: i64, y: i64) -> i64 {
-    debug_assert!(x == i64::from(x as i32) && y == i64::from(y as i32));
     wide_mul(x as i32, y as i32) >> 30
 }
 

@@ -247,19 +247,30 @@ pub(super) fn clz(mut x: u32) -> u32 {
     n + CLZ8.get((x >> 24) as usize).map_or(0, |&c| u32::from(c))
 }
 
-/// `floor(a b / 2^32)` for `a, b <= 2^31`: the high word of the product, exact, from four
+/// `floor(a b / 2^32)` for `a, b <= 2^31` (a precondition its callers keep; beyond it the
+/// result is unspecified, never a panic): the high word of the product, exact, from four
 /// 16 x 16-bit products in `i32` arithmetic (every partial product and sum fits an `i32` for
 /// these operands). Written on signed halves on purpose: LLVM recognizes the textbook
 /// unsigned form as a 64-bit multiply and emits the `__aeabi_lmul` call this avoids.
 #[inline(always)]
 pub(super) fn mul_hi_u32(a: u32, b: u32) -> u32 {
-    debug_assert!(a <= 1 << 31 && b <= 1 << 31);
     let (ah, al) = ((a >> 16) as i32, (a & 0xFFFF) as i32);
     let (bh, bl) = ((b >> 16) as i32, (b & 0xFFFF) as i32);
     // ah, bh <= 2^15 and al, bl < 2^16: ah bl < 2^31; al bl as u32.
-    let (m1, m2, ll) = (ah * bl, al * bh, (al as u32) * (bl as u32));
-    let mid = (ll >> 16) as i32 + (m1 & 0xFFFF) + (m2 & 0xFFFF); // < 3 2^16
-    (ah * bh + (m1 >> 16) + (m2 >> 16) + (mid >> 16)) as u32
+    let (m1, m2, ll) = (
+        ah.wrapping_mul(bl),
+        al.wrapping_mul(bh),
+        (al as u32).wrapping_mul(bl as u32),
+    );
+    // < 3 2^16. (Summing `m2` whole in a `u32`, one split fewer, made LLVM see a 64-bit
+    // product in some callers and call `__aeabi_lmul`: Cortex-M0 `phong_hemi_cos` +105.)
+    let mid = ((ll >> 16) as i32)
+        .wrapping_add(m1 & 0xFFFF)
+        .wrapping_add(m2 & 0xFFFF);
+    ah.wrapping_mul(bh)
+        .wrapping_add(m1 >> 16)
+        .wrapping_add(m2 >> 16)
+        .wrapping_add(mid >> 16) as u32
 }
 
 /// `ceil(2^32 / o)` for the odd `o` in [3, 255] (`RECIP_ODD[(o - 3) / 2]`): the reciprocals of

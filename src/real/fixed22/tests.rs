@@ -445,6 +445,40 @@ fn coordinate_limit_test_is_the_largest_magnitudes() {
     assert!(inside > 100_000 && inside < 900_000, "{inside}");
 }
 
+/// `kernels::mul_hi_u32` is the high word of the 64-bit product for every pair within its
+/// precondition (`a, b <= 2^31`): the edges (0, 1, `2^16 - 1`, `2^16`, `2^31 - 1`, `2^31`
+/// and their neighbours) against each other and 1 000 000 random pairs of every magnitude.
+#[test]
+fn high_words_of_unsigned_products_are_exact() {
+    use super::kernels::mul_hi_u32;
+    let exact = |a: u32, b: u32| ((u64::from(a) * u64::from(b)) >> 32) as u32;
+    let edges = [
+        0,
+        1,
+        0xFFFF,
+        0x1_0000,
+        0x1_0001,
+        0x7FFF_0000,
+        0x7FFF_FFFF,
+        0x8000_0000,
+    ];
+    for &a in &edges {
+        for &b in &edges {
+            assert_eq!(mul_hi_u32(a, b), exact(a, b), "{a} {b}");
+        }
+    }
+    let mut next = crate::test_rng::xorshift32(0x0B16_B00B);
+    for _ in 0..1_000_000 {
+        let a = (next() >> 1) >> (next() % 31);
+        let b = (next() >> 1) >> (next() % 31);
+        assert_eq!(mul_hi_u32(a, b), exact(a, b), "{a} {b}");
+        assert_eq!(
+            mul_hi_u32(a | 0xFFFF, b | 0xFFFF),
+            exact(a | 0xFFFF, b | 0xFFFF)
+        );
+    }
+}
+
 /// The Lambert-type cosine through Q15, with a light's prepared axis, and `sky_ground`'s
 /// products by it.
 mod cosine;
