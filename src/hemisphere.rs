@@ -52,9 +52,10 @@ impl<T: Real> HemisphereLight<T> {
     /// Accuracy: 2 ULP plus the normalization of `n`; in `Fixed22` the cosine is taken
     /// through Q15 (within 5.3e-5, so the value within 2.7e-5 plus the normalization's
     /// rounding). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot product: 44
-    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 332 and 45 on the
+    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 328 and 40 on the
     /// Cortex-M0 in `Fixed22` (QEMU, exact; 376 and 94 with the cosine's Q22 products, 339
-    /// and 52 with the axis rounded to Q15 on every call instead of once by `new`).
+    /// and 52 with the axis rounded to Q15 on every call instead of once by `new`, 332 and 45
+    /// with the halving from four 32-bit products, not three: the crate-internal `mul_le2`).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -64,8 +65,8 @@ impl<T: Real> HemisphereLight<T> {
     #[inline]
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
         match n.to_unit() {
-            // 1/2 times at most 2 (within rounding): `mul_small`, the bits of `*`.
-            Some(n) => T::mul_small(T::HALF, T::ONE + self.axis.cos_from(n)).clamp01(),
+            // 1/2 times at most 2 (within rounding): `mul_le2`, the bits of `*`.
+            Some(n) => T::mul_le2(T::HALF, T::ONE + self.axis.cos_from(n)).clamp01(),
             None => T::ZERO,
         }
     }

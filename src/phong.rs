@@ -251,7 +251,7 @@ fn phong_cap_from_angle<T: Real>(lobe: &PhongLobe<T>, c: T, s: T, cs: T, ss: T) 
     let m = lobe.m;
     if negligible_terms::<T>()
         && c < cs
-        && T::mul_small(c, cs) + T::mul_small(s, ss) < lobe.negligible_cos.0
+        && T::mul_le2(c, cs) + T::mul_le2(s, ss) < lobe.negligible_cos.0
     {
         return T::ZERO;
     }

@@ -297,7 +297,9 @@ impl<T: Real> Sh9Irradiance<T> {
     /// once, so the sum adds at most 1 LSB (`2^-22`) to the monomials' own rounding, where 8
     /// products rounded one by one added up to 8; 4 32-bit `MULS` a term and no saturation
     /// test (the `Fixed22` override of the crate-internal `sh9_dot`). M0 `Fixed22` with a
-    /// `UnitVec3`: 1434 -> 705 instructions a call (724 now), 983 with a `Vec3` (QEMU, exact).
+    /// `UnitVec3`: 1434 -> 705 instructions a call (724 later, 688 with the quadratic
+    /// monomials from three 32-bit products each, the crate-internal `mul_le2`, the same
+    /// bits), 983 -> 956 with a `Vec3` (QEMU, exact).
     ///
     /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
     /// Measured: f64 within 1.8e-15 of its reference (the independent quadrature); against f64,

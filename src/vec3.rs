@@ -253,11 +253,12 @@ impl<T: Real> Rgb<T> {
 pub(crate) fn cos_sin_between<T: Real>(d: UnitVec3<T>, axis: UnitVec3<T>) -> (T, T) {
     let (c, s) = d.dot_and_cross_length(axis);
     let (c, s) = (c.clamp(-T::ONE, T::ONE), s.min(T::ONE));
-    // The factors lie in [0, 2]: `mul_small`, the bits of `*` (fixed point: no saturation test).
+    // The factors lie in [0, 2]: `mul_le2`, the bits of `*` (fixed point: no saturation test,
+    // three 32-bit products).
     if c.abs() <= s {
-        (c, T::mul_small(T::ONE - c, T::ONE + c).sqrt())
+        (c, T::mul_le2(T::ONE - c, T::ONE + c).sqrt())
     } else {
-        let mag = T::mul_small(T::ONE - s, T::ONE + s).sqrt();
+        let mag = T::mul_le2(T::ONE - s, T::ONE + s).sqrt();
         (if c < T::ZERO { -mag } else { mag }, s)
     }
 }

@@ -72,7 +72,7 @@ fn phong_arc_terms<T: Real>(
         // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
         // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
         // (Twice the angle as a sum: the bits of `2 *`, without a product.)
-        let half = T::mul_small(rg, sin_x).atan2(T::ONE + cos_x + ra + rb);
+        let half = T::mul_le2(rg, sin_x).atan2(T::ONE + cos_x + ra + rb);
         half + half
     } else {
         T::ZERO
@@ -122,7 +122,7 @@ fn phong_unit_edge_terms<T: Real>(
     // x = R(cos x) sin x by the arc ratio where the backend has one (fixed point: 3 products
     // for the arc tangent's division and polynomial), else the arc tangent.
     let angle = || match cos_x.arc_ratio() {
-        Some(ratio) => T::mul_small(ratio, sin_x),
+        Some(ratio) => T::mul_le2(ratio, sin_x),
         None => sin_x.atan2(cos_x),
     };
     Some(phong_arc_terms(
@@ -383,8 +383,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 11 508 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 11 508 to 14 141 where the reflection meets the quad; 11 841 before the recurrence's
+    /// 11 074 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 11 074 to 13 573 where the reflection meets the quad; 11 508 before the products of
+    /// unit vectors' components took three 32-bit products instead of four, the crate-internal
+    /// `mul_le2`, `dot3_le2` and `cross3_le2`; 11 841 before the recurrence's
     /// products kept the middle partial product whole, `wide::mul_q32`; 11 861 before the positions'
     /// range test went to one unsigned comparison a coordinate, the sealed
     /// `within_coordinate_limit`; 11 857 before the clipped edges

@@ -24,9 +24,9 @@ pub(crate) fn arc_axis_form<T: Real>(
     // |wg| < 1/2): the products without fixed point's saturation tests, the same bits.
     let b = w.triple(g, s);
     let f = if wg.abs() < T::HALF {
-        T::mul_small(T::ONE - wg, T::ONE + wg)
+        T::mul_le2(T::ONE - wg, T::ONE + wg)
     } else {
-        (T::mul_small(a, a) + T::mul_small(b, b)).min(T::ONE)
+        (T::mul_le2(a, a) + T::mul_le2(b, b)).min(T::ONE)
     };
     (b, f)
 }

@@ -38,6 +38,28 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
+    /// [`mul_small`](Sealed::mul_small) for factors of at most 2 in magnitude, plus `2^-6`
+    /// (unit vectors' components, their cross products and quadratic monomials, cosines and
+    /// sines and `1 +- c` of them): the same bits;
+    /// [`Fixed22`](super::Fixed22) takes three 32-bit products where `mul_small` takes four
+    /// (`kernels::mul_bits_le2`).
+    #[inline(always)]
+    fn mul_le2(a: Self, b: Self) -> Self {
+        Self::mul_small(a, b)
+    }
+    /// [`dot3_small`](Sealed::dot3_small) for components of at most 2 in magnitude (unit
+    /// vectors and the cross product of two): the same bits, by [`mul_le2`](Sealed::mul_le2)
+    /// on [`Fixed22`](super::Fixed22).
+    #[inline(always)]
+    fn dot3_le2(a: [Self; 3], b: [Self; 3]) -> Self {
+        Self::dot3_small(a, b)
+    }
+    /// [`cross3_small`](Sealed::cross3_small) for components of at most 2 in magnitude: the
+    /// same bits, by [`mul_le2`](Sealed::mul_le2) on [`Fixed22`](super::Fixed22).
+    #[inline(always)]
+    fn cross3_le2(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        Self::cross3_small(a, b)
+    }
     /// `max |v_i| <= COORDINATE_LIMIT`: [`Vec3::check_position`](crate::Vec3::check_position)'s
     /// range test, for the backends with a limit (fixed point; the floats have none and never
     /// call it). This default compares the largest magnitude;

@@ -239,6 +239,27 @@ impl crate::real::sealed::Sealed for Fixed22 {
     fn mul_small(a: Self, b: Self) -> Self {
         Fixed22::from_bits(mul_bits_small(a.to_bits(), b.to_bits()))
     }
+    /// `mul_bits_le2`: exact `floor(a b / 2^22)` from three 32-bit products.
+    #[inline(always)]
+    fn mul_le2(a: Self, b: Self) -> Self {
+        Fixed22::from_bits(mul_bits_le2(a.to_bits(), b.to_bits()))
+    }
+    /// As `dot3_small`, each product by `mul_bits_le2`.
+    #[inline(always)]
+    fn dot3_le2(a: [Self; 3], b: [Self; 3]) -> Self {
+        let p = |k: usize| mul_bits_le2(a[k].to_bits(), b[k].to_bits());
+        Fixed22::from_bits(p(0).wrapping_add(p(1)).wrapping_add(p(2)))
+    }
+    /// As `cross3_small`, each product by `mul_bits_le2`.
+    #[inline(always)]
+    fn cross3_le2(a: [Self; 3], b: [Self; 3]) -> [Self; 3] {
+        let p = |i: usize, j: usize| mul_bits_le2(a[i].to_bits(), b[j].to_bits());
+        [
+            Fixed22::from_bits(p(1, 2).wrapping_sub(p(2, 1))),
+            Fixed22::from_bits(p(2, 0).wrapping_sub(p(0, 2))),
+            Fixed22::from_bits(p(0, 1).wrapping_sub(p(1, 0))),
+        ]
+    }
     /// As `dot3_small`: each component a difference of two exact products (below 512 by the
     /// precondition).
     #[inline(always)]

@@ -445,6 +445,47 @@ fn coordinate_limit_test_is_the_largest_magnitudes() {
     assert!(inside > 100_000 && inside < 900_000, "{inside}");
 }
 
+/// `kernels::mul_bits_le2` (three 32-bit products) is `mul_bits_small`'s exact `floor(a b /
+/// 2^22)` for every pair of factors within its bound (`2^23 + 2^16` raw): the edges (the
+/// bound, `+-2^23`, `+-2^22` and their neighbours, the halves' boundaries) against each
+/// other, 1 000 000 random pairs of every magnitude up to `2^23`, and the 64-bit product.
+#[test]
+fn products_of_factors_up_to_two_are_exact() {
+    use super::kernels::{mul_bits_le2, mul_bits_small};
+    let exact = |a: i32, b: i32| ((i64::from(a) * i64::from(b)) >> 22) as i32;
+    let mut edges = std::vec::Vec::new();
+    for e in [
+        0,
+        1,
+        0xFFFF,
+        0x1_0000,
+        1 << 22,
+        (1 << 22) + 64,
+        1 << 23,
+        (1 << 23) + (1 << 16),
+    ] {
+        for d in [-1, 0, 1] {
+            let v: i32 = e + d;
+            if v.unsigned_abs() <= (1 << 23) + (1 << 16) {
+                edges.push(v);
+                edges.push(-v);
+            }
+        }
+    }
+    for &a in &edges {
+        for &b in &edges {
+            assert_eq!(mul_bits_le2(a, b), exact(a, b), "{a} {b}");
+            assert_eq!(mul_bits_le2(a, b), mul_bits_small(a, b), "{a} {b}");
+        }
+    }
+    let mut next = crate::test_rng::xorshift32(0x1E2C_0DE5);
+    let mut factor = || ((next() as i32) >> 8) >> (next() % 24);
+    for _ in 0..1_000_000 {
+        let (a, b) = (factor(), factor());
+        assert_eq!(mul_bits_le2(a, b), exact(a, b), "{a} {b}");
+    }
+}
+
 /// `kernels::mul_hi_u32` is the high word of the 64-bit product for every pair within its
 /// precondition (`a, b <= 2^31`): the edges (0, 1, `2^16 - 1`, `2^16`, `2^31 - 1`, `2^31`
 /// and their neighbours) against each other and 1 000 000 random pairs of every magnitude.
