@@ -387,7 +387,7 @@ const ARC_RATIO_CUBICS: [[i32; 4]; 16] = [
 
 /// `acos(c)/sqrt(1 - c^2)` (`theta/sin(theta)` with `c = cos(theta)`) in Q22 of a Q22 `c` in
 /// [0, 1]: the piece of [`ARC_RATIO_CUBICS`] that `x = 1 - c` falls in, by Horner's rule in
-/// Q22 (`mul_bits_small`, exact floors: the factors stay below 2 and `2^-4`, far inside its
+/// Q22 (`mul_bits_le2`, exact floors: the factors stay below 2 and `2^-4`, inside its
 /// range). `c` is clamped to [0, 1] first: `c > 1` (a cosine's rounding) answers exactly 1,
 /// `c < 0` answers `R(0)`, about `pi/2`, which the caller (the polygon edge terms, only for
 /// `c` above 0) never asks. Within 3.9e-7 of `R` on [0, 1]. About 40 Cortex-M0 instructions.
@@ -402,7 +402,7 @@ pub(super) fn arc_ratio_bits(c: i32) -> i32 {
         Some(&piece) => piece,
         None => ARC_RATIO_CUBICS[0],
     };
-    let m = super::kernels::mul_bits_small;
+    let m = super::kernels::mul_bits_le2;
     m(m(m(a3, u) + a2, u) + a1, u) + a0
 }
 

@@ -8,16 +8,16 @@
 #[cfg(feature = "polygon")]
 use super::elementary::rsqrt_seed;
 use super::elementary::{even_top_of_square_sum, rsqrt_core_at, rsqrt_out, sqrt_out};
-use super::kernels::{clz, mul_bits_small};
+use super::kernels::{clz, mul_bits_le2};
 use super::{Fixed22, FRAC};
 use crate::Real;
 
 /// `x^2 + y^2 + z^2` of components of at most 2 in magnitude (what `rescale_by_top` leaves):
-/// each square by `mul_bits_small`, the sum (at most 12) without saturation tests; the same
-/// bits as `x * x + y * y + z * z`.
+/// each square by `mul_bits_le2` (three 32-bit products), the sum (at most 12) without
+/// saturation tests; the same bits as `x * x + y * y + z * z`.
 #[inline(always)]
 pub(super) fn unit_scale(x: Fixed22, y: Fixed22, z: Fixed22) -> Fixed22 {
-    let sq = |c: Fixed22| mul_bits_small(c.to_bits(), c.to_bits());
+    let sq = |c: Fixed22| mul_bits_le2(c.to_bits(), c.to_bits());
     Fixed22::from_bits(sq(x) + sq(y) + sq(z))
 }
 

@@ -153,7 +153,7 @@ impl crate::real::sealed::Sealed for Fixed22 {
         let ([x, y, z], k) = rescale_by_top_exp(v, top);
         let s2 = unit_scale(x, y, z);
         let (len, inv) = unit_sqrt_rsqrt(s2);
-        let sc = |c: Self| Fixed22::from_bits(mul_bits_small(c.to_bits(), inv.to_bits()));
+        let sc = |c: Self| Fixed22::from_bits(mul_bits_le2(c.to_bits(), inv.to_bits()));
         let u = [sc(x), sc(y), sc(z)];
         // `len * d` for `d = 2^-k`: `*`'s floor (an arithmetic shift right) or its saturation
         // to MAX (a shift left of `len < 2^24` by at most 8, then the clamp), the same bits.
