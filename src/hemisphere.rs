@@ -52,10 +52,11 @@ impl<T: Real> HemisphereLight<T> {
     /// Accuracy: 2 ULP plus the normalization of `n`; in `Fixed22` the cosine is taken
     /// through Q15 (within 5.3e-5, so the value within 2.7e-5 plus the normalization's
     /// rounding). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot product: 44
-    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 328 and 40 on the
+    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 297 and 40 on the
     /// Cortex-M0 in `Fixed22` (QEMU, exact; 376 and 94 with the cosine's Q22 products, 339
     /// and 52 with the axis rounded to Q15 on every call instead of once by `new`, 332 and 45
-    /// with the halving from four 32-bit products, not three: the crate-internal `mul_le2`).
+    /// with the halving, and the normalization's six products, from four 32-bit products,
+    /// not three: the crate-internal `mul_le2`).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -209,7 +210,8 @@ impl<T: Real> SkyGround<T> {
     /// cosine is taken through Q15 and kept there (within 6.9e-5, times `|sky - ground|/2`:
     /// the sealed `mix_by_cos`). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot
     /// product, 3 multiply-adds: 59 instructions a call on the Cortex-M4F in f32, 45 with a
-    /// `UnitVec3`; 371 and 90 on the Cortex-M0 in `Fixed22` (QEMU, exact; 383 and 102 with
+    /// `UnitVec3`; 340 and 90 on the Cortex-M0 in `Fixed22` (QEMU, exact; 371 with the
+    /// normalization's six products from four 32-bit products, not three; 383 and 102 with
     /// the axis rounded to Q15 on every call and the sums' saturation tests, which `mid` and
     /// `half` make unreachable; 456 and 170 with
     /// the cosine and the products in Q22; before, the products by `c` skipped the saturation

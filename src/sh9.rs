@@ -299,7 +299,7 @@ impl<T: Real> Sh9Irradiance<T> {
     /// test (the `Fixed22` override of the crate-internal `sh9_dot`). M0 `Fixed22` with a
     /// `UnitVec3`: 1434 -> 705 instructions a call (724 later, 688 with the quadratic
     /// monomials from three 32-bit products each, the crate-internal `mul_le2`, the same
-    /// bits), 983 -> 956 with a `Vec3` (QEMU, exact).
+    /// bits), 983 -> 925 with a `Vec3` (its normalization's products likewise; QEMU, exact).
     ///
     /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
     /// Measured: f64 within 1.8e-15 of its reference (the independent quadrature); against f64,

@@ -383,10 +383,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 11 074 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 11 074 to 13 573 where the reflection meets the quad; 11 508 before the products of
-    /// unit vectors' components took three 32-bit products instead of four, the crate-internal
-    /// `mul_le2`, `dot3_le2` and `cross3_le2`; 11 841 before the recurrence's
+    /// 10 812 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 10 812 to 13 255 where the reflection meets the quad; 11 074 before the normalizations'
+    /// products took three 32-bit products instead of four, 11 508 before the products of
+    /// unit vectors' components did, the crate-internal `mul_le2`, `dot3_le2` and
+    /// `cross3_le2`; 11 841 before the recurrence's
     /// products kept the middle partial product whole, `wide::mul_q32`; 11 861 before the positions'
     /// range test went to one unsigned comparison a coordinate, the sealed
     /// `within_coordinate_limit`; 11 857 before the clipped edges
