@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 76 | 206 | 781 | 973 | 670 | 801 |
-//! | `sphere_lambert_hermite` | 83 | 214 | 790 | 991 | 660 | 804 |
-//! | `polygon_lambert` | 496 | 1088 | 2018 | 2641 | 1607 | 2010 |
-//! | `phong_sphere` | 480 | 601 | 5026 | 5073 | 4028 | 4156 |
-//! | `phong_polygon` | 1839 | 2567 | 11842 | 12683 | 7858 | 8356 |
+//! | `sphere_lambert` | 76 | 206 | 712 | 907 | 626 | 758 |
+//! | `sphere_lambert_hermite` | 83 | 214 | 727 | 928 | 619 | 763 |
+//! | `polygon_lambert` | 496 | 1088 | 1987 | 2610 | 1588 | 1991 |
+//! | `phong_sphere` | 480 | 601 | 4858 | 4973 | 3952 | 4119 |
+//! | `phong_polygon` | 1839 | 2567 | 10813 | 11654 | 7398 | 7896 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole
