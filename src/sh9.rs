@@ -243,7 +243,24 @@ impl<T: Real> Sh9<T> {
 
     /// Folds the basis constants and `A_l` into the irradiance polynomial (once per
     /// environment).
+    ///
+    /// On `Fixed22` it also packs the polynomial as 16-bit mantissas, one exponent per
+    /// channel, where the environment's error bound in that form is at most `2^-11` (every
+    /// coefficient near 1 or below: about `1.2e-4` of bound for coefficients of 1); then
+    /// [`Sh9Irradiance::irradiance`] takes one 32-bit product a term. [`Sh9::prepare_exact`]
+    /// keeps the exact Q22 sum. On the floats the two are the same.
     pub fn prepare(&self) -> Sh9Irradiance<T> {
+        self.prepare_with(true)
+    }
+
+    /// [`Sh9::prepare`] without `Fixed22`'s 16-bit fast path: every evaluation the exact
+    /// fused Q22 sum (within `2^-22` of its Q22 monomials; about 3.4 times the Cortex-M0
+    /// instructions, see [`Sh9Irradiance::irradiance`]).
+    pub fn prepare_exact(&self) -> Sh9Irradiance<T> {
+        self.prepare_with(false)
+    }
+
+    fn prepare_with(&self, fast: bool) -> Sh9Irradiance<T> {
         let k = T::from_f64;
         let l = &self.coeffs;
         let c = |i: usize, s: f64| l[i].scale(k(s));
@@ -266,7 +283,9 @@ impl<T: Real> Sh9<T> {
         let bounded = [sum(|c| c.r), sum(|c| c.g), sum(|c| c.b)]
             .iter()
             .all(|s| *s <= limit);
-        Sh9Irradiance { k, bounded }
+        let mut k = k;
+        let shift = T::sh9_pack(&mut k, fast);
+        Sh9Irradiance { k, bounded, shift }
     }
 }
 
@@ -278,6 +297,9 @@ pub struct Sh9Irradiance<T> {
     /// Each channel's `sum |k|` within 1e30 (no overflow possible): the per-sample
     /// finiteness test is skipped.
     bounded: bool,
+    /// What the type's own evaluation needs besides `k` (`Fixed22`'s 16-bit fast path: the
+    /// mantissas' shift, and `k` holds the mantissas; 0 otherwise).
+    shift: u8,
 }
 
 impl<T: Real> Sh9Irradiance<T> {
@@ -291,15 +313,23 @@ impl<T: Real> Sh9Irradiance<T> {
     /// overflow): 96 instructions a call on the Cortex-M4F in f32, 82 with a `UnitVec3`
     /// (QEMU, exact). Fallback: black for a zero or non-finite `n`.
     ///
-    /// `Fixed22` evaluates each channel as one fused dot product of its nine coefficients with
-    /// the Q22 monomials (`x`, `y`, `z`, `xy`, `yz`, `xz`, `z^2`, `x^2 - y^2`, each rounded
-    /// down once from the unit normal): the exact products summed in integers and rounded down
-    /// once, so the sum adds at most 1 LSB (`2^-22`) to the monomials' own rounding, where 8
-    /// products rounded one by one added up to 8; 4 32-bit `MULS` a term and no saturation
-    /// test (the `Fixed22` override of the crate-internal `sh9_dot`). M0 `Fixed22` with a
-    /// `UnitVec3`: 1434 -> 705 instructions a call (724 later, 688 with the quadratic
-    /// monomials from three 32-bit products each, the crate-internal `mul_le2`, the same
-    /// bits), 983 -> 925 with a `Vec3` (its normalization's products likewise; QEMU, exact).
+    /// `Fixed22` has two evaluations, chosen once by [`Sh9::prepare`]:
+    ///
+    /// - **16-bit (the default where the environment allows it):** the monomials (`x`, `y`,
+    ///   `z`, `xy`, `yz`, `xz`, `z^2`, `x^2 - y^2`) in Q15 and the coefficients as 16-bit
+    ///   mantissas with one exponent, every term one 32-bit `MULS`, the sum in an `i32` that
+    ///   cannot wrap. Error: within a bound that `prepare` computes from the coefficients and
+    ///   requires to be at most `2^-11` in every channel (half the fixed-point budget of
+    ///   1/1024; about `1.2e-4` for coefficients near 1, so every environment with its
+    ///   radiance coefficients up to about 1 qualifies, Table 20-1's among them). M0 `Fixed22`
+    ///   with a `UnitVec3`: 688 -> 198 instructions a call; with a `Vec3` 925 -> 431 (QEMU,
+    ///   exact; issue 13's bar is 200).
+    /// - **Exact ([`Sh9::prepare_exact`], and any environment beyond that bound):** each
+    ///   channel as one fused dot product of its nine coefficients with the Q22 monomials
+    ///   (each rounded down once from the unit normal): the exact products summed in
+    ///   integers and rounded down once, so the sum adds at most 1 LSB (`2^-22`) to the
+    ///   monomials' own rounding; 4 32-bit `MULS` a term and no saturation test. M0: 688
+    ///   instructions with a `UnitVec3`, 925 with a `Vec3`.
     ///
     /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
     /// Measured: f64 within 1.8e-15 of its reference (the independent quadrature); against f64,
@@ -310,11 +340,11 @@ impl<T: Real> Sh9Irradiance<T> {
         let Some(n) = n.to_unit() else {
             return Rgb::splat(T::ZERO);
         };
-        let [xy, yz, xz, zz, xx_yy] = n.quadratic_monomials();
-        let m = [n.x, n.y, n.z, xy, yz, xz, zz, xx_yy];
-        if let Some(e) = T::sh9_dot(&self.k, &m) {
+        if let Some(e) = T::sh9_dot(&self.k, self.shift, n) {
             return e.finite_or_zero();
         }
+        let [xy, yz, xz, zz, xx_yy] = n.quadratic_monomials();
+        let m = [n.x, n.y, n.z, xy, yz, xz, zz, xx_yy];
         let ch = |f: fn(&Rgb<T>) -> T| {
             let [k0, k @ ..] = &self.k;
             let mut s = f(k0);

@@ -250,6 +250,8 @@ mod elementary;
 mod kernels;
 mod normalize;
 mod sealed;
+#[cfg(feature = "sh9")]
+mod sh9_q15;
 #[cfg(test)]
 mod tests;
 use elementary::*;

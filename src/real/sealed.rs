@@ -296,10 +296,27 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn from_q60_shl(x: i64, k: u32) -> Self {
         Self::from_q60(x << k)
     }
+    /// Packs the irradiance polynomial `k` into the type's own form, in place, and returns
+    /// what the evaluation needs besides (`fast`: fixed point's 16-bit fast path where the
+    /// environment allows it, `fixed22::sh9_q15`: `k` becomes its mantissas and the result
+    /// their shift; otherwise `k` is left as it is and the result is 0).
     #[cfg(feature = "sh9")]
     #[inline(always)]
-    fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
-        let _ = (k, m);
+    fn sh9_pack(k: &mut [crate::Rgb<Self>; 9], fast: bool) -> u8 {
+        let _ = (k, fast);
+        0
+    }
+    /// The packed polynomial `k` (with [`sh9_pack`](Sealed::sh9_pack)'s `shift`) at the unit
+    /// normal `n` in the type's own evaluation; `None` for the generic one (the floats:
+    /// products and sums in order).
+    #[cfg(feature = "sh9")]
+    #[inline(always)]
+    fn sh9_dot(
+        k: &[crate::Rgb<Self>; 9],
+        shift: u8,
+        n: crate::UnitVec3<Self>,
+    ) -> Option<crate::Rgb<Self>> {
+        let _ = (k, shift, n);
         None
     }
 }

@@ -306,15 +306,36 @@ impl crate::real::sealed::Sealed for Fixed22 {
     fn mul_unit(a: Self, c: Self) -> Self {
         Fixed22::from_bits(mul_bits_unit(a.to_bits(), c.to_bits()))
     }
-    /// One fused dot product per channel (`dot8_split_bits`): every term's exact product
-    /// summed in integers and rounded down once, where `*` and `+` round each of the 8
-    /// products down (up to 8 LSB) and saturate each partial sum. The result is
-    /// `floor(k0 + sum k m)` of the Q22 monomials, saturated: within 1 LSB of their exact
-    /// value. Each monomial is split once for the three channels. 4 `MULS` and no saturation
-    /// test a term: measured in the QEMU budget (see `Sh9Irradiance::irradiance`).
+    /// The 16-bit mantissas of the fast path in place of `k`, and their shift, where `fast`
+    /// and the environment's error bound allow it (`sh9_q15`); else 0.
+    #[cfg(feature = "sh9")]
+    fn sh9_pack(k: &mut [crate::Rgb<Self>; 9], fast: bool) -> u8 {
+        if fast {
+            super::sh9_q15::pack(k).unwrap_or(0)
+        } else {
+            0
+        }
+    }
+    /// The fast path (`sh9_q15`: single 32-bit products of 16-bit factors, within `2^-11`)
+    /// where the environment has one; else one fused dot product per channel
+    /// (`dot8_split_bits`): every term's exact product summed in integers and rounded down
+    /// once, where `*` and `+` round each of the 8 products down (up to 8 LSB) and saturate
+    /// each partial sum. Its result is `floor(k0 + sum k m)` of the Q22 monomials,
+    /// saturated: within 1 LSB of their exact value. Each monomial is split once for the
+    /// three channels. 4 `MULS` and no saturation test a term. Both measured in the QEMU
+    /// budget (see `Sh9Irradiance::irradiance`).
     #[cfg(feature = "sh9")]
     #[inline(always)]
-    fn sh9_dot(k: &[crate::Rgb<Self>; 9], m: &[Self; 8]) -> Option<crate::Rgb<Self>> {
+    fn sh9_dot(
+        k: &[crate::Rgb<Self>; 9],
+        shift: u8,
+        n: crate::UnitVec3<Self>,
+    ) -> Option<crate::Rgb<Self>> {
+        if shift != 0 {
+            return Some(super::sh9_q15::irradiance(k, shift, n.array()));
+        }
+        let [xy, yz, xz, zz, xx_yy] = n.quadratic_monomials();
+        let m = [n.x, n.y, n.z, xy, yz, xz, zz, xx_yy];
         // Written out (the M0 build at opt-level "s" keeps loops, through the stack).
         let s = |i: usize| split_11(m[i].to_bits());
         let [s0, s1, s2, s3, s4, s5, s6, s7] = [s(0), s(1), s(2), s(3), s(4), s(5), s(6), s(7)];

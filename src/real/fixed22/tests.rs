@@ -523,3 +523,7 @@ fn high_words_of_unsigned_products_are_exact() {
 /// The Lambert-type cosine through Q15, with a light's prepared axis, and `sky_ground`'s
 /// products by it.
 mod cosine;
+
+/// SH9's 16-bit fast path against f64 and against its own integer sums.
+#[cfg(feature = "sh9")]
+mod sh9_q15;
