@@ -320,8 +320,9 @@ impl<T: Real> Sh9Irradiance<T> {
     ///   mantissas with one exponent, every term one 32-bit `MULS`, the sum in an `i32` that
     ///   cannot wrap. Error: within a bound that `prepare` computes from the coefficients and
     ///   requires to be at most `2^-11` in every channel (half the fixed-point budget of
-    ///   1/1024; about `1.2e-4` for coefficients near 1, so every environment with its
-    ///   radiance coefficients up to about 1 qualifies, Table 20-1's among them). M0 `Fixed22`
+    ///   1/1024; near `3e-4` for coefficients up to 1, so every environment with its
+    ///   radiance coefficients up to about 1 qualifies, Table 20-1's among them; errors
+    ///   measured up to `1.3e-4`). M0 `Fixed22`
     ///   with a `UnitVec3`: 688 -> 198 instructions a call; with a `Vec3` 925 -> 431 (QEMU,
     ///   exact; issue 13's bar is 200).
     /// - **Exact ([`Sh9::prepare_exact`], and any environment beyond that bound):** each
