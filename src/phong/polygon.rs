@@ -42,7 +42,14 @@ fn phong_edge_terms<T: Real>(
     let [cx, cy, _] = T::unit3([dot, glen, T::ZERO])?;
     let cs = Vec3::new(cx, cy, T::ZERO);
     let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
-    let angle = || glen.atan2(dot);
+    // x itself (odd m): on a float backend with an arc ratio (f32 and `Fast32` with an FPU)
+    // and within a right angle, `R(cos x) sin x` from the pair, as `fan_half_angle` does;
+    // elsewhere the arc tangent (fixed point keeps its bits: its unit edges take the ratio in
+    // `phong_unit_edge_terms`).
+    let angle = || match cos_x.arc_ratio() {
+        Some(ratio) if T::RESOLUTION == T::ZERO && cos_x >= T::ZERO => ratio * sin_x,
+        _ => glen.atan2(dot),
+    };
     Some(phong_arc_terms(
         gu,
         (cos_x, sin_x),
@@ -423,8 +430,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
     /// vectors' products saturating); on the Cortex-M4F in f32, 1 797 (1 839 before the fan
-    /// triangles' half angles went from the arc tangent to the arc ratio, `fan_half_angle`;
-    /// 1 894 before later changes, 1 941 before the plane
+    /// triangles' half angles went from the arc tangent to the arc ratio, `fan_half_angle`; at
+    /// m = 15, in a build of the budget at that exponent, 1 702, 1 772 with `x` by the arc
+    /// tangent where `R(cos x) sin x` now gives it; 1 894 before later changes, 1 941 before the plane
     /// test's maximum went off the hot path and `abs` became `VABS.F32`; 1 933 before the plane
     /// test moved ahead of `r`'s normalization, 1 892 without the
     /// ball's test, which that case fails; 1 943 with the step's integers converted to floats
