@@ -180,7 +180,7 @@ impl<T: Real> Sh9<T> {
     /// <!-- BEGIN acc-sh9_disc_irradiance: target/accuracy/model-sh9_disc_irradiance.md -->
     /// Measured: f64 within 2.7e-15 of its reference (the independent quadrature); against f64,
     /// f32 1.2e-6 (ill-conditioned: 1.0e-6), Fast32 1.2e-6 (ill-conditioned: 1.0e-6), Fixed22
-    /// 3.8e-6; 75 874 cases in all (`docs/accuracy.md`).
+    /// 1.1e-4; 75 874 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sh9_disc_irradiance -->
     pub fn disc(axis: Vec3<T>, alpha: T, colour: Rgb<T>) -> Result<Self, Error> {
         if !alpha.is_finite() {
@@ -323,8 +323,9 @@ impl<T: Real> Sh9Irradiance<T> {
     ///   1/1024; near `3e-4` for coefficients up to 1, so every environment with its
     ///   radiance coefficients up to about 1 qualifies, Table 20-1's among them; errors
     ///   measured up to `1.3e-4`). M0 `Fixed22`
-    ///   with a `UnitVec3`: 688 -> 198 instructions a call; with a `Vec3` 925 -> 431 (QEMU,
-    ///   exact; issue 13's bar is 200).
+    ///   with a `UnitVec3`: 688 -> 198 instructions a call; with a `Vec3` 925 -> 430 (QEMU,
+    ///   exact; issue 13's bar is 200). Flash: the `sh9` family alone in an M0 `Fixed22`
+    ///   firmware 6 060 -> 7 152 bytes (both paths and the packing; `boards/size-probe`).
     /// - **Exact ([`Sh9::prepare_exact`], and any environment beyond that bound):** each
     ///   channel as one fused dot product of its nine coefficients with the Q22 monomials
     ///   (each rounded down once from the unit normal): the exact products summed in
@@ -334,7 +335,7 @@ impl<T: Real> Sh9Irradiance<T> {
     ///
     /// <!-- BEGIN acc-sh9_irradiance: target/accuracy/model-sh9_irradiance.md -->
     /// Measured: f64 within 1.8e-15 of its reference (the independent quadrature); against f64,
-    /// f32 6.8e-7, Fast32 6.8e-7, Fixed22 2.1e-6; 309 210 cases in all (`docs/accuracy.md`).
+    /// f32 6.8e-7, Fast32 6.8e-7, Fixed22 1.2e-4; 309 210 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sh9_irradiance -->
     #[inline]
     pub fn irradiance(&self, n: impl Direction<T>) -> Rgb<T> {
