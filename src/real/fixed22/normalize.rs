@@ -88,12 +88,33 @@ pub(super) fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed2
     (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
 }
 
+/// `(21 - h).clamp(-8, 21)` with `h` the position of `top`'s highest set bit (`top > 0`):
+/// from three comparisons where `h` is in `[20, 23]` (vectors of magnitude 1/4 to 4, those
+/// the normalizations mostly meet), from [`clz`] elsewhere; the same value either way.
+#[inline(always)]
+pub(super) fn top_exponent(top: u32) -> i32 {
+    if top >> 20 != 0 && top >> 24 == 0 {
+        if top >= 1 << 22 {
+            if top >= 1 << 23 {
+                -2
+            } else {
+                -1
+            }
+        } else if top >= 1 << 21 {
+            0
+        } else {
+            1
+        }
+    } else {
+        (21 - (31 - clz(top) as i32)).clamp(-8, 21)
+    }
+}
+
 /// [`rescale_by_top`] for `top > 0`, with the exponent `k` of its power of two `2^-k` (in
 /// `[-8, 21]`) instead of the power itself.
 #[inline(always)]
 pub(super) fn rescale_by_top_exp(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], i32) {
-    let high = 31 - clz(top) as i32; // 0..=31
-    let k = (21 - high).clamp(-8, 21);
+    let k = top_exponent(top);
     // Written out (not `map`, which the M0 build turned into a loop through the stack).
     let [x, y, z] = [v[0].to_bits(), v[1].to_bits(), v[2].to_bits()];
     let [x, y, z] = if k >= 0 {
