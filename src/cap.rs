@@ -277,7 +277,7 @@ impl<T: Real> CapLight<T> {
     /// Accuracy: measured below (f64 against the quadrature, the others against f64).
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and 1 dot product; in
     /// the fillet (out of line) also 1 sqrt and 2 atan2: median 44 instructions a call on the
-    /// Cortex-M4F in f32, 28 with a `UnitVec3`; 323 and 66 on the Cortex-M0 in `Fixed22`
+    /// Cortex-M4F in f32, 28 with a `UnitVec3`; 310 and 66 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact; 361 and 73 with the lit term's two products and the normalization's six
     /// from four 32-bit products each, not three, the crate-internal `mul_le2`, the same bits;
     /// 400 and 118 with the cosine's Q22 products, before it went through Q15:
@@ -333,7 +333,7 @@ impl<T: Real> CapLight<T> {
     /// Cost: 1 normalization (none for a [`UnitVec3`]) and the chord's squared length
     /// `|n - axis|^2` (`c = 1 - |n - axis|^2/2`, accurate near 1); only in the fillet (out of
     /// line) also 1 cross product, 2 sqrt, 1 atan2 and a cubic: median 50 instructions a call
-    /// on the Cortex-M4F in f32, 33 with a `UnitVec3`; 409 and 151 on the Cortex-M0 in
+    /// on the Cortex-M4F in f32, 33 with a `UnitVec3`; 396 and 151 on the Cortex-M0 in
     /// `Fixed22` (QEMU, exact; 444 and 158 with four 32-bit products a product of factors
     /// up to 2, not three, the crate-internal `mul_le2`; before the fillet test, 179/158 and
     /// 1499/1167).
@@ -520,7 +520,7 @@ impl<T: Real> SphereLight<T> {
     /// Accuracy: measured, below. Cost: 2 normalizations, 1 division (fixed point: no
     /// division, `sin sigma` from the normalization's reciprocal square root); in the
     /// fillet (out of line) also 2 sqrt (`cos sigma` among them) and 2 atan2: median 76 instructions a call on the
-    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 712 and 457 on the Cortex-M0 in `Fixed22`
+    /// Cortex-M4F in f32, 66 with a `UnitVec3`; 695 and 457 on the Cortex-M0 in `Fixed22`
     /// (QEMU, exact; 781 and 495 with the lit term's two products and the normalizations'
     /// products from four 32-bit products each, not three, the crate-internal `mul_le2`, the
     /// same bits; 857 and 571 before the cosine went through Q15, the sealed `cos_unit`,

@@ -52,11 +52,12 @@ impl<T: Real> HemisphereLight<T> {
     /// Accuracy: 2 ULP plus the normalization of `n`; in `Fixed22` the cosine is taken
     /// through Q15 (within 5.3e-5, so the value within 2.7e-5 plus the normalization's
     /// rounding). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot product: 44
-    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 297 and 40 on the
+    /// instructions a call on the Cortex-M4F in f32, 30 with a `UnitVec3`; 284 and 40 on the
     /// Cortex-M0 in `Fixed22` (QEMU, exact; 376 and 94 with the cosine's Q22 products, 339
     /// and 52 with the axis rounded to Q15 on every call instead of once by `new`, 332 and 45
     /// with the halving, and the normalization's six products, from four 32-bit products,
-    /// not three: the crate-internal `mul_le2`).
+    /// not three: the crate-internal `mul_le2`; 297 before the rescaling's exponent came from
+    /// comparisons, `fixed22::normalize::top_exponent`).
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
@@ -210,7 +211,8 @@ impl<T: Real> SkyGround<T> {
     /// cosine is taken through Q15 and kept there (within 6.9e-5, times `|sky - ground|/2`:
     /// the sealed `mix_by_cos`). Cost: 1 normalization (none for a [`UnitVec3`]), 1 dot
     /// product, 3 multiply-adds: 59 instructions a call on the Cortex-M4F in f32, 45 with a
-    /// `UnitVec3`; 340 and 90 on the Cortex-M0 in `Fixed22` (QEMU, exact; 371 with the
+    /// `UnitVec3`; 327 and 90 on the Cortex-M0 in `Fixed22` (QEMU, exact; 340 before the
+    /// rescaling's exponent came from comparisons, `fixed22::normalize::top_exponent`; 371 with the
     /// normalization's six products from four 32-bit products, not three; 383 and 102 with
     /// the axis rounded to Q15 on every call and the sums' saturation tests, which `mid` and
     /// `half` make unreachable; 456 and 170 with

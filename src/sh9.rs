@@ -323,7 +323,7 @@ impl<T: Real> Sh9Irradiance<T> {
     ///   1/1024; near `3e-4` for coefficients up to 1, so every environment with its
     ///   radiance coefficients up to about 1 qualifies, Table 20-1's among them; errors
     ///   measured up to `1.3e-4`). M0 `Fixed22`
-    ///   with a `UnitVec3`: 688 -> 198 instructions a call; with a `Vec3` 925 -> 430 (QEMU,
+    ///   with a `UnitVec3`: 688 -> 198 instructions a call; with a `Vec3` 925 -> 417 (QEMU,
     ///   exact; issue 13's bar is 200). Flash: the `sh9` family alone in an M0 `Fixed22`
     ///   firmware 6 060 -> 7 152 bytes (both paths and the packing; `boards/size-probe`).
     /// - **Exact ([`Sh9::prepare_exact`], and any environment beyond that bound):** each

@@ -17,7 +17,7 @@
 //! Cost: a call with a `UnitVec3` skips the normalization the call makes of a `Vec3`, measured
 //! (exact QEMU counts of the same calls both ways, the README's "With a unit normal"): 6 to
 //! 43 instructions per call on the Cortex-M4F in f32 (`hemi_const` 47 -> 30), 237 to 265 on the
-//! Cortex-M0 in `Fixed22` (`hemi_const` 297 -> 40), 249 to 267 on RV32IMC in `Fixed22`.
+//! Cortex-M0 in `Fixed22` (`hemi_const` 284 -> 40), 249 to 267 on RV32IMC in `Fixed22`.
 
 use crate::{Error, Real, Vec3};
 use core::ops::{Deref, Neg};
