@@ -334,10 +334,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// instructions in f32 (at d38eaa0 495: 220 unlit, 495 wholly lit, 744 to 910 clipped; 545 before the
     /// plane test's maximum went off the hot path, each squared length's range was tested
     /// once and `abs` became `VABS.F32`; with the walk alone 224, 703 and 756 to 914; 692 before the plane test moved ahead of the normal's
-    /// normalization to be shared with the Phong term, 920 with the arc tangent), 1 974
-    /// Cortex-M0 instructions in `Fixed22` (951 unlit, 1 974 wholly lit, 4 239 to 5 942
-    /// clipped; 964, 1 987 and 4 273 to 5 957 before the rescaling's exponent came from
-    /// comparisons in the common band, `normalize::top_exponent`; 995, 2 018 and 4 304 to 5 988 before the normal's normalization took three
+    /// normalization to be shared with the Phong term, 920 with the arc tangent), 1 938
+    /// Cortex-M0 instructions in `Fixed22` (950 unlit, 1 938 wholly lit, 4 238 to 5 941
+    /// clipped; 964, 1 987 and 4 273 to 5 957 before the rescalings' exponents came from
+    /// comparisons in the common band, `normalize::top_exponent` and `top_bit`; 995, 2 018 and 4 304 to 5 988 before the normal's normalization took three
     /// 32-bit products a product, not four, the crate-internal `mul_le2`; 1 015, 2 038 and 4 324 to 6 008 before the positions' range test went to
     /// one unsigned comparison a coordinate, the sealed `within_coordinate_limit`; 1 049, 2 182 and 4 355 to 6 045 before the horizon test's sign came from
     /// 16-bit products, the sealed `height_nonneg`; with the directions normalized in Q22 and

@@ -195,7 +195,8 @@ const RATIO_MIN_COS_LOG2: u32 = 16;
 /// instructions with Q22 products, 3 265 with Q15 products from the Q22 directions, 2 507
 /// with the directions normalized in 16-bit form, 2 182 with the ratio in 32-bit products
 /// (2 038 with the horizon test's sign from 16-bit products too; 1 744 with a `UnitVec3`
-/// normal).
+/// normal; later 1 938 and 1 686, the 16-bit normalization's exponent from comparisons in
+/// the common band, `fixed22::normalize::top_bit`).
 ///
 /// Accuracy on `Fixed22`: the directions (within 1.1e-4 a component, 5.2e-5 measured; see
 /// `unit_q15` of `fixed22::normalize`) and the ratio (within `2^-16 + 4.2e-6`) leave the sum

@@ -110,6 +110,31 @@ pub(super) fn top_exponent(top: u32) -> i32 {
     }
 }
 
+/// `31 - clz(top)` (`top > 0`), the 16-bit normalization's exponent: from three comparisons
+/// where it is in `[20, 23]`, as [`top_exponent`]. Written apart, each ladder with its own
+/// constants: every way of sharing one that I tried (a common `Option`, one through the
+/// other) LLVM compiled with the clamp or the subtraction back in the band, and one of the
+/// two lost its gain (measured on the Cortex-M0).
+#[cfg(feature = "polygon")]
+#[inline(always)]
+pub(super) fn top_bit(top: u32) -> i32 {
+    if top >> 20 != 0 && top >> 24 == 0 {
+        if top >= 1 << 22 {
+            if top >= 1 << 23 {
+                23
+            } else {
+                22
+            }
+        } else if top >= 1 << 21 {
+            21
+        } else {
+            20
+        }
+    } else {
+        31 - clz(top) as i32
+    }
+}
+
 /// [`rescale_by_top`] for `top > 0`, with the exponent `k` of its power of two `2^-k` (in
 /// `[-8, 21]`) instead of the power itself.
 #[inline(always)]
@@ -160,7 +185,7 @@ pub(super) fn rescale_by_top_exp(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], i3
 #[inline(always)]
 pub(super) fn unit_q15(v: [Fixed22; 3]) -> Option<[i32; 3]> {
     let top = magnitude_top(v, Fixed22::TINY)?;
-    let high = 31 - clz(top) as i32; // 0..=31
+    let high = top_bit(top); // 0..=31
     let [x, y, z] = [v[0].to_bits(), v[1].to_bits(), v[2].to_bits()];
     let k = 14 - high;
     let [x, y, z] = if k >= 0 {

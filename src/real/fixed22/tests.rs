@@ -528,25 +528,30 @@ mod cosine;
 #[cfg(feature = "sh9")]
 mod sh9_q15;
 
-/// `normalize::top_exponent` (comparisons in the common band, the leading-zero count
-/// elsewhere) is `(21 - h).clamp(-8, 21)` of the highest set bit `h`: every power of two and
-/// its neighbours, the band's ends, and 1 000 000 random values of every magnitude.
+/// `normalize::top_exponent` and `normalize::top_bit` (comparisons in the common band, the
+/// leading-zero count elsewhere) are `(21 - h).clamp(-8, 21)` and `h` of the highest set bit
+/// `h`: every power of two and its neighbours, the band's ends, and 1 000 000 random values
+/// of every magnitude.
 #[test]
-fn top_exponent_is_the_leading_bit_formula() {
+fn top_exponent_and_top_bit_are_the_leading_bit_formulas() {
     use super::normalize::top_exponent;
-    let want = |t: u32| (21 - (31 - t.leading_zeros() as i32)).clamp(-8, 21);
+    let high = |t: u32| 31 - t.leading_zeros() as i32;
+    let check = |t: u32| {
+        assert_eq!(top_exponent(t), (21 - high(t)).clamp(-8, 21), "{t:#x}");
+        #[cfg(feature = "polygon")]
+        assert_eq!(super::normalize::top_bit(t), high(t), "{t:#x}");
+    };
     for b in 0..32 {
         let p = 1u32 << b;
         for t in [p, p - 1, p + 1, p | (p - 1)] {
             if t > 0 {
-                assert_eq!(top_exponent(t), want(t), "{t:#x}");
+                check(t);
             }
         }
     }
-    assert_eq!(top_exponent(u32::MAX), want(u32::MAX));
+    check(u32::MAX);
     let mut next = crate::test_rng::xorshift32(0x70_9E);
     for _ in 0..1_000_000 {
-        let t = (next() >> (next() % 32)).max(1);
-        assert_eq!(top_exponent(t), want(t), "{t:#x}");
+        check((next() >> (next() % 32)).max(1));
     }
 }
