@@ -88,51 +88,49 @@ pub(super) fn rescale_by_top(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], Fixed2
     (scaled, Fixed22::from_bits(1 << (FRAC as i32 - k)))
 }
 
-/// `(21 - h).clamp(-8, 21)` with `h` the position of `top`'s highest set bit (`top > 0`):
-/// from three comparisons where `h` is in `[20, 23]` (vectors of magnitude 1/4 to 4, those
-/// the normalizations mostly meet), from [`clz`] elsewhere; the same value either way.
-#[inline(always)]
-pub(super) fn top_exponent(top: u32) -> i32 {
-    if top >> 20 != 0 && top >> 24 == 0 {
-        if top >= 1 << 22 {
-            if top >= 1 << 23 {
-                -2
+/// `f(h)` with `h` the position of `top`'s highest set bit (`top > 0`): its four values
+/// (given as constants, `f(23)` to `f(20)`) from three comparisons where `h` is in
+/// `[20, 23]` (vectors of magnitude 1/4 to 4, those the normalizations mostly meet), from
+/// [`clz`] elsewhere. One macro for
+/// [`top_exponent`] and [`top_bit`], so that each ladder has its own constants: every way of
+/// sharing one function that I tried (a common `Option`, one through the other) LLVM compiled
+/// with the clamp or the subtraction back in the band, and one of the two lost its gain
+/// (measured on the Cortex-M0).
+macro_rules! by_top_bit {
+    ($top:expr, [$at23:expr, $at22:expr, $at21:expr, $at20:expr], |$h:ident| $f:expr) => {{
+        let top: u32 = $top;
+        if top >> 20 != 0 && top >> 24 == 0 {
+            if top >= 1 << 22 {
+                if top >= 1 << 23 {
+                    $at23
+                } else {
+                    $at22
+                }
+            } else if top >= 1 << 21 {
+                $at21
             } else {
-                -1
+                $at20
             }
-        } else if top >= 1 << 21 {
-            0
         } else {
-            1
+            let $h = 31 - clz(top) as i32;
+            $f
         }
-    } else {
-        (21 - (31 - clz(top) as i32)).clamp(-8, 21)
-    }
+    }};
 }
 
-/// `31 - clz(top)` (`top > 0`), the 16-bit normalization's exponent: from three comparisons
-/// where it is in `[20, 23]`, as [`top_exponent`]. Written apart, each ladder with its own
-/// constants: every way of sharing one that I tried (a common `Option`, one through the
-/// other) LLVM compiled with the clamp or the subtraction back in the band, and one of the
-/// two lost its gain (measured on the Cortex-M0).
+/// The rescaling's exponent `(21 - h).clamp(-8, 21)` for the highest set bit `h` of `top`
+/// (`top > 0`), the same value as from [`clz`].
+#[inline(always)]
+pub(super) fn top_exponent(top: u32) -> i32 {
+    by_top_bit!(top, [-2, -1, 0, 1], |h| (21 - h).clamp(-8, 21))
+}
+
+/// The position `31 - clz(top)` of `top`'s highest set bit (`top > 0`): the 16-bit
+/// normalization's exponent.
 #[cfg(feature = "polygon")]
 #[inline(always)]
 pub(super) fn top_bit(top: u32) -> i32 {
-    if top >> 20 != 0 && top >> 24 == 0 {
-        if top >= 1 << 22 {
-            if top >= 1 << 23 {
-                23
-            } else {
-                22
-            }
-        } else if top >= 1 << 21 {
-            21
-        } else {
-            20
-        }
-    } else {
-        31 - clz(top) as i32
-    }
+    by_top_bit!(top, [23, 22, 21, 20], |h| h)
 }
 
 /// [`rescale_by_top`] for `top > 0`, with the exponent `k` of its power of two `2^-k` (in
