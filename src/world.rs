@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 76 | 206 | 712 | 907 | 626 | 758 |
-//! | `sphere_lambert_hermite` | 83 | 214 | 727 | 928 | 619 | 763 |
-//! | `polygon_lambert` | 496 | 1088 | 1987 | 2610 | 1588 | 1991 |
-//! | `phong_sphere` | 480 | 601 | 4858 | 4973 | 3952 | 4119 |
-//! | `phong_polygon` | 1797 | 2525 | 10813 | 11654 | 7398 | 7896 |
+//! | `sphere_lambert` | 76 | 206 | 695 | 890 | 596 | 728 |
+//! | `sphere_lambert_hermite` | 83 | 214 | 710 | 911 | 589 | 733 |
+//! | `polygon_lambert` | 496 | 1088 | 1938 | 2573 | 1540 | 1922 |
+//! | `phong_sphere` | 480 | 601 | 4841 | 4956 | 3922 | 4089 |
+//! | `phong_polygon` | 1797 | 2525 | 10738 | 11579 | 7304 | 7803 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole
