@@ -413,8 +413,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 10 737 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 10 737 to 13 158 where the reflection meets the quad; 10 812 before the rescaling's
+    /// 10 154 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 10 154 to 12 381 where the reflection meets the quad; at m = 15, in a build of the
+    /// budget at that exponent, 9 796; 10 737 (m = 15: 10 677) before the recurrence's products
+    /// took three `MULS` instead of four and its `1/k` one table for either parity; 10 812 before the rescaling's
     /// exponent came from comparisons in the common band, `normalize::top_exponent`; 11 074 before the normalizations'
     /// products took three 32-bit products instead of four, 11 508 before the products of
     /// unit vectors' components did, the crate-internal `mul_le2`, `dot3_le2` and

@@ -40,9 +40,10 @@ pub(crate) fn arc_axis_form<T: Real>(
 /// dropped: the moments' early termination); with `None` that bound costs nothing.
 ///
 /// Cost: 3 products, 2 additions and a division per step on the floats, with `k` and `k - 1`
-/// as floats (2 more additions with an FPU, 2 conversions in soft float); on fixed point the Q28 form of [`q28`] (4 exact integer products and a table
-/// reciprocal per step: about 125 Cortex-M0 instructions a step, against 230 in the type's
-/// own saturating arithmetic; measured in the QEMU budget's single-step trace).
+/// as floats (2 more additions with an FPU, 2 conversions in soft float); on fixed point the
+/// Q28 form of [`q28`] (4 integer products of three `MULS` each and a table reciprocal per
+/// step: about 78 Cortex-M0 instructions a step, against 230 in the type's own saturating
+/// arithmetic; measured in the QEMU budget's single-step trace).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn cos_power_sums<T: Real>(
@@ -111,27 +112,32 @@ pub(crate) fn cos_power_sums<T: Real>(
 /// quantity of it lies within +-8, bounds below), six more than `Fixed22`'s 22, so its
 /// roundings stay below the type's own. Its factors in [0, 1] (`f`, `g^2`, `a^2` and `1/k`) are
 /// unsigned Q32 fractions ([`Q32`]; 1 itself becomes `1 - 2^-32`), and each product is
-/// the high word [`mul_q32`] (on the Cortex-M0 four 16 x 16-bit `MULS` with the constant
-/// factor's halves split once per edge; exact, no saturation test: the bounds hold). The
-/// division by the step's `k` becomes `t = u + (l + l2 - u)/k` with `u = f t` (the same value
-/// as `(l + l2 + (k - 1) f t)/k`) and `1/k` from a table ([`recip_q32`]): four products and no
-/// division per step. Measured on the Cortex-M0 (QEMU budget, `phong_polygon` quad at m = 16,
-/// 28 steps): about 125 instructions a step, against 150 with Q28 factors and a full 64-bit
-/// product each (the call 15 009 -> 14 320 instructions), and 230 in the type's own
-/// saturating arithmetic; later about 12 fewer, the products' middle terms summed whole
-/// (the call 11 841 -> 11 508).
+/// [`mul_q32`]: three 16 x 16-bit `MULS` with the constant factor's halves split once per edge,
+/// within one unit of 2^-28 of the high word of the exact product (in (-2, 1] units of the
+/// product itself, a quarter of a unit below it on average), no saturation test: the bounds
+/// hold. The division by the step's `k` becomes `t = u + (l + l2 - u)/k` with `u = f t` (the
+/// same value as `(l + l2 + (k - 1) f t)/k`) and `1/k` from a table ([`recip_q32`], one entry
+/// for every `k` up to 256): four products and no division per step. Measured on the
+/// Cortex-M0 (QEMU budget, `phong_polygon` quad at m = 16, 28 steps, with a `UnitVec3`): about
+/// 78 instructions a step; the call 10 491 -> 10 059 when the products went from the exact
+/// high word of four `MULS` to three, then 9 908 when `1/k` came from one table for either
+/// parity of `k` (at m = 15, whose even `k` took the trailing zeros of `k` and a shift, 10 431
+/// -> 9 550 for both); before, 150 a step with Q28 factors and a full 64-bit product each (the
+/// call 15 009 -> 14 320 instructions), and 230 in the type's own saturating arithmetic. Errors
+/// against f64 (`tests/fixed.rs`, the Phong polygon's worst): 1.08e-5 -> 1.01e-5 at m = 255,
+/// 6.7e-6 -> 6.4e-6 at m = 128 (the exact floor's bias of half a unit a product is gone).
 ///
 /// Bounds (which is why nothing can wrap): the inputs are clamped to their ranges (`a`, `b`,
 /// `cos x`, `sin x` to [-1, 1], `f` to [0, 1], `x` to [0, 4]; valid callers pass them so),
 /// so `|g| <= 1`, `|h| <= 2`, `|l| <= 2` and `|l2| <= 1` for good (the factors `g^2`, `a^2`
 /// are below 1), and by induction `|t| <= max(|t0|, 3) <= 4` (each `t` is a weighted mean
 /// of `(l + l2)` and the previous `t`): `l + l2 - u` stays within 7 (`7 2^28 < 2^31`), up to the
-/// roundings' drift of at most 2 units of 2^-28 per step. The sum (up to 128 terms of at most
+/// roundings' drift of at most 4 units of 2^-28 per step. The sum (up to 128 terms of at most
 /// 4) is kept in an `i64` and returned rounded to 22 fraction bits, saturating as the type's
 /// own additions would.
 #[cfg(feature = "fixed")]
 mod q28 {
-    use crate::real::fixed22::{recip_q32, recip_q32_odd};
+    use crate::real::fixed22::recip_q32;
     use crate::wide::{mul_q32, mul_shr, Q32};
     use crate::Real;
 
@@ -195,7 +201,6 @@ mod q28 {
                 22,
             )
         };
-        let mut j = 0usize;
         while k < n {
             sum += i64::from(t);
             if let Some((coef, budget)) = stop {
@@ -205,14 +210,8 @@ mod q28 {
                 cpow *= f;
             }
             k += 2;
-            // 1/k: for odd k (k = 2 j + 3) the table's next entry.
-            let r = if odd {
-                let r = recip_q32_odd(j).unwrap_or_else(|| recip_q32(k));
-                j += 1;
-                r
-            } else {
-                recip_q32(k)
-            };
+            // 1/k from the table, for either parity.
+            let r = recip_q32(k);
             let u = mul_q32(t, fq);
             t = u + mul_q32(l + l2 - u, Q32::new(r));
             l = mul_q32(l, g2);

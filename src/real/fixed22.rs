@@ -255,9 +255,9 @@ mod sh9_q15;
 #[cfg(test)]
 mod tests;
 use elementary::*;
-use kernels::*;
 #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
-pub(crate) use kernels::{recip_q32, recip_q32_odd};
+pub(crate) use kernels::recip_q32;
+use kernels::*;
 use normalize::{magnitude_top, rescale_by_top, unit_rsqrt, unit_scale, unit_sqrt_rsqrt};
 
 impl Real for Fixed22 {

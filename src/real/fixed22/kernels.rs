@@ -292,57 +292,51 @@ pub(super) fn mul_hi_u32(a: u32, b: u32) -> u32 {
         .wrapping_add(mid >> 16) as u32
 }
 
-/// `ceil(2^32 / o)` for the odd `o` in [3, 255] (`RECIP_ODD[(o - 3) / 2]`): the reciprocals of
-/// [`div_u32_bits`] (508 bytes).
-pub(super) const RECIP_ODD: [u32; 127] = {
-    let mut t = [0u32; 127];
+/// `ceil(2^32 / k)` for the integer `k` in [2, 256] (`RECIP[k - 2]`; exact for a power of two,
+/// above `2^32/k` by less than one unit otherwise; each at most `2^31`): the reciprocals of
+/// [`div_u32_bits`] and of the fixed-point cosine-power recurrence ([`recip_q32`]). 1 020 bytes:
+/// every `k` has its entry, so neither needs `k`'s trailing zeros (about 12 Cortex-M0
+/// instructions by a multiplication and a table of their own) nor a test of its parity, where
+/// 508 bytes held the odd `k` alone.
+pub(super) const RECIP: [u32; 255] = {
+    let mut t = [0u32; 255];
     let mut i = 0;
-    while i < 127 {
-        let o = 2 * i as u64 + 3;
-        t[i] = ((1u64 << 32).div_ceil(o)) as u32;
+    while i < 255 {
+        let k = i as u64 + 2;
+        t[i] = ((1u64 << 32).div_ceil(k)) as u32;
         i += 1;
     }
     t
 };
 
-/// [`recip_q32`] of the odd `k = 2 j + 3` while `k < 256` (`None` beyond): the table entry
-/// itself, for a loop over odd `k` that counts `j` (no parity or range tests of `k`).
-#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
-#[inline(always)]
-pub(crate) fn recip_q32_odd(j: usize) -> Option<u32> {
-    RECIP_ODD.get(j).copied()
-}
-
-/// `1/k` as a Q32 fraction for an integer `k >= 2`: `ceil(2^32/o) / 2^e` from [`RECIP_ODD`]
-/// for `k = o 2^e` up to 256 (above the exact `2^32/k` by less than one unit, never below by a
-/// unit), `2^(32 - e)` for a power of two, `floor((2^32 - 1)/k)` by division above 256
-/// (`u32::MAX` for `k < 2`). The `1/k` steps of the fixed-point cosine-power recurrence
-/// (`polygon::arc`): a table lookup, no division.
+/// `1/k` as a Q32 fraction for an integer `k >= 2`: [`RECIP`]'s `ceil(2^32/k)` up to 256 (one
+/// lookup; above the exact `2^32/k` by less than one unit, never below), `floor((2^32 - 1)/k)`
+/// by division above (`u32::MAX` for `k < 2`). The `1/k` steps of the fixed-point
+/// cosine-power recurrence (`polygon::arc`): no division.
 #[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
 #[inline(always)]
 pub(crate) fn recip_q32(k: u32) -> u32 {
-    if k & 1 == 1 && k >= 3 {
-        // Odd k (the recurrence's every step for an even Phong exponent): one lookup.
-        if let Some(&r) = RECIP_ODD.get((k as usize - 3) / 2) {
-            return r;
-        }
+    match RECIP.get((k as usize).wrapping_sub(2)) {
+        Some(&r) => r,
+        None => recip_q32_cold(k),
     }
-    if !(2..=256).contains(&k) {
-        return if k < 2 { u32::MAX } else { u32::MAX / k };
-    }
-    let e = k.trailing_zeros();
-    let o = k >> e;
-    if o == 1 {
-        // k = 2^e, 1 <= e <= 8.
-        1u32 << (32 - e)
+}
+
+/// [`recip_q32`] outside the table.
+#[cfg(all(feature = "polygon", any(feature = "phong", feature = "moments")))]
+#[cold]
+#[inline(never)]
+fn recip_q32_cold(k: u32) -> u32 {
+    if k < 2 {
+        u32::MAX
     } else {
-        RECIP_ODD.get((o as usize - 3) / 2).map_or(0, |&r| r >> e)
+        u32::MAX / k
     }
 }
 
 /// `a / n` in Q22 for an integer `n` in [1, 256]: bit-identical to `div_bits(a, n 2^22)` (the
 /// quotient `a / n` of the raw bits, rounded half away from zero), without its reciprocal
-/// core and full product. With `n = o 2^k` (`o` odd), `q = floor(|a| ceil(2^32/o) / 2^(32 + k))` is
+/// core and full product. `q = floor(|a| ceil(2^32/n) / 2^32)` ([`RECIP`]) is
 /// `floor(|a|/n)` or one more (the reciprocal's excess times `|a| <= 2^31` is below 1/2); the
 /// remainder `|a| - q n` (one `MULS`) corrects it and gives the rounding bit. Other `n`: `div_bits`.
 #[inline]
@@ -355,15 +349,15 @@ pub(super) fn div_u32_bits(a: i32, n: u32) -> i32 {
         };
         return div_bits(a, b);
     }
-    let k = n.trailing_zeros();
-    let o = n >> k;
     let x = a.unsigned_abs(); // <= 2^31
-    let mut q = if o == 1 {
-        x >> k
+                              // n in [2, 256]: the entry exists (`get`, so that no panic path is compiled). x R / 2^32 is
+                              // below x / n + 1/2 (R exceeds 2^32 / n by less than one unit, x <= 2^31): q is floor(x / n)
+                              // or one more.
+    let mut q = if n == 1 {
+        x
     } else {
-        // o is odd in [3, 255]: the entry exists (`get`, so that no panic path is compiled).
-        match RECIP_ODD.get((o as usize).wrapping_sub(3) / 2) {
-            Some(&r) => mul_hi_u32(x, r) >> k,
+        match RECIP.get((n as usize).wrapping_sub(2)) {
+            Some(&r) => mul_hi_u32(x, r),
             None => return div_bits(a, (n << FRAC) as i32),
         }
     };
