@@ -62,8 +62,12 @@ mod edge;
 #[cfg(feature = "phong")]
 mod negligible;
 mod validate;
+#[cfg(feature = "phong")]
+pub(crate) use arc::arc_axis_f;
+#[cfg(feature = "moments")]
+pub(crate) use arc::arc_axis_form;
 #[cfg(any(feature = "phong", feature = "moments"))]
-pub(crate) use arc::{arc_axis_form, cos_power_sums};
+pub(crate) use arc::cos_power_sums;
 pub(crate) use clip::{for_each_clipped_edge, for_each_unclipped_edge, ApexFan};
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use clip::{ClippedEdge, CROSSING};

@@ -64,7 +64,7 @@ pub(crate) fn mul_shr_by_halves(a: i32, b: i32, s: u32) -> i32 {
     feature = "polygon",
     any(feature = "phong", feature = "moments")
 ))]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq, Debug)]
 pub(crate) struct Q32 {
     hi: u32,
     lo: u32,

@@ -5,7 +5,7 @@
 
 use crate::lobe::negligible_terms;
 use crate::polygon::{
-    arc_axis_form, cos_power_sums, floats_ball_below, for_each_clipped_edge, near_limit,
+    arc_axis_f, cos_power_sums, floats_ball_below, for_each_clipped_edge, near_limit,
     offset_products, phong_near_log2, phong_negligible_with, products_in_range, ClippedEdge,
     PolygonLight, Uncached, VertexDirections, CROSSING,
 };
@@ -50,31 +50,31 @@ fn phong_edge_terms<T: Real>(
         Some(ratio) if T::RESOLUTION == T::ZERO && cos_x >= T::ZERO => ratio * sin_x,
         _ => glen.atan2(dot),
     };
+    let rg = r.dot_unit(gu);
     Some(phong_arc_terms(
-        gu,
+        (rg, || r.triple(gu, ua)),
         (cos_x, sin_x),
         angle,
-        (ua, ra),
+        ra,
         rb,
-        r,
         m,
     ))
 }
 
-/// [`phong_edge_terms`] from the edge plane's unit normal `gu` and the `(cos x, sin x)` pair
-/// of the angle `x` it subtends; `x` itself, where needed (odd `m`), from `angle`.
+/// [`phong_edge_terms`] from `rg = r.gu` (`gu` the edge plane's unit normal), `rp` giving `r.(gu
+/// x ua)` (the arc's form, `arc_axis_form`'s `b`; needed for `m > 0`) and the `(cos x, sin
+/// x)` pair of the angle `x` the edge subtends; `x` itself, where needed (odd `m`), from
+/// `angle`.
 #[inline(always)]
 fn phong_arc_terms<T: Real>(
-    gu: UnitVec3<T>,
+    (rg, rp): (T, impl FnOnce() -> T),
     (cos_x, sin_x): (T, T),
     angle: impl FnOnce() -> T,
-    (ua, ra): (UnitVec3<T>, T),
+    ra: T,
     rb: T,
-    r: UnitVec3<T>,
     m: u32,
 ) -> (T, T) {
     let even = m & 1 == 0;
-    let rg = r.dot_unit(gu);
     let w = if even {
         // Van Oosterom and Strackee's triangle (r, ua, ub), as `ApexFan::add`:
         // r.(ua x ub)/(|ua| |ub|) = (r.gu) sin x over 1 + cos x + r.ua + r.ub.
@@ -87,7 +87,8 @@ fn phong_arc_terms<T: Real>(
     if m == 0 {
         return (w, T::ZERO);
     }
-    let (rp, f) = arc_axis_form(r, gu, ua, rg, ra);
+    let rp = rp();
+    let f = arc_axis_f(rg, ra, rp);
     // x itself enters only the sums of even order (odd m).
     let x = if even { T::ZERO } else { angle() };
     // T_sum(a, b, m - 1, x) of Snyder appendix G: every T(k), k = m - 1, m - 3, ...
@@ -127,14 +128,21 @@ const UNIT_MIN_COS_LOG2: u32 = 16;
 
 /// Fixed point's [`phong_edge_terms`] for an edge within a right angle (`cos x` at least
 /// [`UNIT_MIN_COS_LOG2`]), from the unit directions `a` and `b` of its endpoints, which the walk
-/// normalizes anyway: `cos x = a.b`, and `G = a x b` normalized gives the plane's normal and
-/// `sin x = |a x b|`. That spares the offsets' products (`ua x d`, `ua.ub`), the range and
-/// near-line tests and the `(cos x, sin x)` pair's own normalization. `None` (the caller takes
+/// normalizes anyway: `cos x = a.b`, `sin x = |G|` with `G = a x b`, and the plane's normal
+/// `G/|G|` enters only through `r.G/|G|` and the arc's `r.(G x a)/|G| = (r.b - (a.b)
+/// r.a)/|G|`, all three from one reciprocal square root of `G` scaled by a power of two (the
+/// sealed `edge_plane_terms`). That spares the offsets' products (`ua x d`, `ua.ub`), the
+/// range and near-line tests, the `(cos x, sin x)` pair's own normalization, and the unit
+/// normal's three products and its triple product (nine). `None` (the caller takes
 /// [`phong_edge_terms`]) for a wider edge or a `G` without a direction.
 ///
-/// Accuracy: `a x b` is within a few `2^-22` absolute, so `G`'s direction within that over
-/// `sin x`; every term it enters is a multiple of `x` (the arc's length), so the error stays a
-/// few `2^-22` absolute per edge.
+/// Accuracy: `a x b` is within a few `2^-22` absolute, and `r.b - (a.b) r.a` likewise, so
+/// the plane's two cosines within that over `sin x`; every term they enter is a multiple of
+/// `x` (the arc's length), so the error stays a few `2^-22` absolute per edge (against f64,
+/// `tests/fixed.rs`: 4.7e-6 -> 5.5e-6 at m = 64, 1.08e-5 -> 1.0e-5 at m = 255 when the
+/// triple product went). Cost on the Cortex-M0, `phong_polygon` at m = 16 with a
+/// `UnitVec3`: 9 797 -> 9 503 instructions, then 9 367 with `sin x` scaled back by a shift
+/// (`fixed22::normalize::unscale_length`) instead of a product.
 #[inline(always)]
 fn phong_unit_edge_terms<T: Real>(
     (a, ra): (UnitVec3<T>, T),
@@ -146,8 +154,11 @@ fn phong_unit_edge_terms<T: Real>(
     if !(c >= T::from_fixed_i32(1, UNIT_MIN_COS_LOG2)) {
         return None;
     }
-    let (gu, s) = g.normalize_with_length()?;
-    let gu = UnitVec3::new_unchecked(gu);
+    // `G = a x b` unnormalized: `r.gu`, the arc's `r.(gu x a)` and `sin x = |G|` from one
+    // reciprocal square root, the latter as `(r.b - (a.b) r.a)/|G|` (`(a x b) x a = b - (a.b)
+    // a`), without `gu` or the triple product (the sealed `edge_plane_terms`).
+    let d = rb - T::mul_le2(c, ra);
+    let (rg, rp, s) = T::edge_plane_terms([g.x, g.y, g.z], r.array(), d)?;
     let (cos_x, sin_x) = (c.min(T::ONE), s.clamp01());
     // x = R(cos x) sin x by the arc ratio where the backend has one (fixed point: 3 products
     // for the arc tangent's division and polynomial), else the arc tangent.
@@ -156,12 +167,11 @@ fn phong_unit_edge_terms<T: Real>(
         None => sin_x.atan2(cos_x),
     };
     Some(phong_arc_terms(
-        gu,
+        (rg, || rp.clamp(-T::ONE, T::ONE)),
         (cos_x, sin_x),
         angle,
-        (a, ra),
+        ra,
         rb,
-        r,
         m,
     ))
 }
@@ -413,9 +423,12 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 10 154 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 10 154 to 12 381 where the reflection meets the quad; at m = 15, in a build of the
-    /// budget at that exponent, 9 796; 10 737 (m = 15: 10 677) before the recurrence's products
+    /// 9 611 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 9 611 to 11 657 where the reflection meets the quad; at m = 15, in a build of the
+    /// budget at that exponent, 9 158; 10 043 before the unit edges' plane came from one
+    /// reciprocal square root without its unit normal and triple product,
+    /// `phong_unit_edge_terms`; 10 154 before the recurrence's first products took the unit
+    /// inputs in Q22; 10 737 (m = 15: 10 677) before the recurrence's products
     /// took three `MULS` instead of four and its `1/k` one table for either parity; 10 812 before the rescaling's
     /// exponent came from comparisons in the common band, `normalize::top_exponent`; 11 074 before the normalizations'
     /// products took three 32-bit products instead of four, 11 508 before the products of

@@ -266,6 +266,25 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
         let u = <Self as super::Real>::unit3(v)?;
         Some(u.map(|c| <Self as super::Real>::to_fixed_i32(c, 15)))
     }
+    /// The Phong edge terms' plane quantities from an edge's unit end directions `a`, `b`:
+    /// given `g = a x b` (not normalized; `|g| = sin x <= 1`), a unit `r` and `d = r.b - (a.b)
+    /// (r.a)` (which is `r.(g x a)`, as `(a x b) x a = b - (a.b) a`), returns `(r.g/|g|,
+    /// d/|g|, |g|)`: the plane normal's cosine `r.gu`, the arc's `r.(gu x a)` without the
+    /// normalized `gu` or its triple product, and `sin x`. `None` exactly where
+    /// [`Real::normalize3`](super::Real::normalize3) of `g` is. This default normalizes `g`
+    /// and divides `d` by `|g|` (the floats never call it: the edge terms from unit
+    /// directions are fixed point's); [`Fixed22`](super::Fixed22) scales `g` and `d` by the
+    /// same power of two and takes one reciprocal square root
+    /// (`fixed22::normalize::edge_plane_terms`).
+    #[cfg(all(feature = "polygon", feature = "phong"))]
+    #[inline(always)]
+    fn edge_plane_terms(g: [Self; 3], r: [Self; 3], d: Self) -> Option<(Self, Self, Self)>
+    where
+        Self: super::Real,
+    {
+        let (gu, s) = <Self as super::Real>::normalize3(g)?;
+        Some((Self::dot3_le2(r, gu), d / s, s))
+    }
     /// The arc ratio `R(c) = acos(c)/sqrt(1 - c^2)` in Q15 (rounded) of a cosine `c` in Q30
     /// in `[0, 1]`, for the 16-bit polygon edge terms (`polygon::edge::unit_ratio_term`);
     /// `None` where the backend has no [`Real::arc_ratio`](super::Real::arc_ratio). This

@@ -154,6 +154,62 @@ pub(super) fn rescale_by_top_exp(v: [Fixed22; 3], top: u32) -> ([Fixed22; 3], i3
     (scaled, k)
 }
 
+/// A length `len` of a vector scaled by `2^k` ([`rescale_by_top_exp`]'s `k`, in `[-8, 21]`)
+/// back at the vector's own scale: `len 2^-k` rounded down and saturated, the bits of `len *
+/// 2^-k` (`Fixed22`'s product rounds down) by one shift instead of a product (a left shift
+/// only for `k < 0`, where `len` may be up to `2 sqrt(3)` and `2^-k` up to 256).
+#[inline(always)]
+pub(super) fn unscale_length(len: Fixed22, k: i32) -> Fixed22 {
+    let bits = len.to_bits();
+    Fixed22::from_bits(if k >= 0 {
+        bits >> k.min(31)
+    } else {
+        let s = (-k).min(8);
+        if bits > i32::MAX >> s {
+            i32::MAX
+        } else {
+            bits << s
+        }
+    })
+}
+
+/// The sealed `edge_plane_terms`: `(r.g/|g|, d/|g|, |g|)` for `g = a x b` of unit `a`, `b`
+/// and `d = r.(g x a)` (so `|d| <= |g|` up to roundings). `g` is scaled by the power of two
+/// `2^k` of [`rescale_by_top_exp`] (`k` in `[-1, 21]`: `|g| <= 1`) and `d` by the same, so
+/// that `r.g 2^k` and `d 2^k` are multiplied by the one reciprocal `1/|g 2^k|`: the same
+/// rescaling, squares and square root as `normalize3` (the length is its bits), without the
+/// three products of the unit vector, and `d/|g|` in place of the triple product `r.(gu x a)`
+/// of nine. `d 2^k` is first clamped to `[-2, 2]` (its magnitude is `|g 2^k| <= sqrt(3)` up to
+/// the roundings of `d`, a few `2^-22` before scaling; the clamp bounds what garbage a caller
+/// could pass), so every product is `mul_bits_le2`'s (factors of at most 2).
+#[cfg(all(feature = "polygon", feature = "phong"))]
+#[inline(always)]
+pub(super) fn edge_plane_terms(
+    g: [Fixed22; 3],
+    r: [Fixed22; 3],
+    d: Fixed22,
+) -> Option<(Fixed22, Fixed22, Fixed22)> {
+    let top = magnitude_top(g, Fixed22::TINY)?;
+    let ([x, y, z], k) = rescale_by_top_exp(g, top);
+    let (len, inv) = unit_sqrt_rsqrt(unit_scale(x, y, z));
+    let m = |a: i32, b: i32| mul_bits_le2(a, b);
+    let rg = m(x.to_bits(), r[0].to_bits())
+        + m(y.to_bits(), r[1].to_bits())
+        + m(z.to_bits(), r[2].to_bits());
+    let two = 1i32 << (FRAC + 1);
+    let d = if k >= 0 {
+        d.to_bits().clamp(-(two >> k), two >> k) << k
+    } else {
+        (d.to_bits() >> -k).clamp(-two, two)
+    };
+    let inv = inv.to_bits();
+    Some((
+        Fixed22::from_bits(m(rg, inv)),
+        Fixed22::from_bits(m(d, inv)),
+        unscale_length(len, k),
+    ))
+}
+
 /// The unit vector of `v` in Q15, `None` exactly where `Real::unit3` is (`max |v_i| <=
 /// TINY`): the sealed `unit3_q15`, for the polygon Lambert edge terms
 /// (`polygon::edge::unit_ratio_term`), in 16-bit form throughout so that every product is one

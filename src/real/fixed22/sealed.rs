@@ -70,6 +70,13 @@ impl crate::real::sealed::Sealed for Fixed22 {
     fn unit3_q15(v: [Self; 3]) -> Option<[i32; 3]> {
         unit_q15(v)
     }
+    /// One power of two for `g` and `d`, one reciprocal square root (see
+    /// `normalize::edge_plane_terms`).
+    #[cfg(all(feature = "polygon", feature = "phong"))]
+    #[inline(always)]
+    fn edge_plane_terms(g: [Self; 3], r: [Self; 3], d: Self) -> Option<(Self, Self, Self)> {
+        edge_plane_terms(g, r, d)
+    }
     /// The same pieces as `arc_ratio`, in 32-bit products (see
     /// `elementary::arc_ratio_q30_to_q15`).
     #[cfg(feature = "polygon")]

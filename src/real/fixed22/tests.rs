@@ -524,6 +524,10 @@ fn high_words_of_unsigned_products_are_exact() {
 /// products by it.
 mod cosine;
 
+/// The Phong polygon's edge plane from unit directions against f64.
+#[cfg(all(feature = "polygon", feature = "phong"))]
+mod edge_plane;
+
 /// SH9's 16-bit fast path against f64 and against its own integer sums.
 #[cfg(feature = "sh9")]
 mod sh9_q15;
