@@ -477,9 +477,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 9 611 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 9 611 to 11 657 where the reflection meets the quad; at m = 15, in a build of the
-    /// budget at that exponent, 9 158; 10 043 before the unit edges' plane came from one
+    /// 9 351 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 9 351 to 11 369 where the reflection meets the quad; at m = 15, in a build of the
+    /// budget at that exponent, 8 894; 9 511 before a horizon arc within a right angle came
+    /// from its ends' unit directions, `horizon_unit_angle`; 9 611 before the recurrence's
+    /// `g^2` came from three `MULS`; 10 043 before the unit edges' plane came from one
     /// reciprocal square root without its unit normal and triple product,
     /// `phong_unit_edge_terms`; 10 154 before the recurrence's first products took the unit
     /// inputs in Q22; 10 737 (m = 15: 10 677) before the recurrence's products
