@@ -7,6 +7,19 @@ extern crate std;
 use super::normalize::rescale_by_top;
 use super::*;
 
+/// A random unit vector as the crate makes one (`unit3` of a random vector of any magnitude),
+/// for the submodules' tests.
+#[cfg(any(feature = "sh9", all(feature = "polygon", feature = "phong")))]
+fn random_unit(next: &mut impl FnMut() -> u32) -> [Fixed22; 3] {
+    loop {
+        let shift = next() % 31;
+        let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
+        if let Some(u) = Fixed22::unit3(v) {
+            return u;
+        }
+    }
+}
+
 /// The product by a factor of at most 1 is `*`'s bits: every `a` on a stride plus the
 /// edges against every `c` edge and a stride of `c` over `[-2^22, 2^22]`.
 #[test]

@@ -5,18 +5,8 @@
 extern crate std;
 
 use super::super::*;
+use super::random_unit as unit;
 use crate::real::sealed::Sealed;
-
-/// A random unit vector as the crate makes one (`unit3` of a random vector of any magnitude).
-fn unit(next: &mut impl FnMut() -> u32) -> [Fixed22; 3] {
-    loop {
-        let shift = next() % 31;
-        let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
-        if let Some(u) = Fixed22::unit3(v) {
-            return u;
-        }
-    }
-}
 
 fn f64s(v: [Fixed22; 3]) -> [f64; 3] {
     v.map(|c| c.to_f64())

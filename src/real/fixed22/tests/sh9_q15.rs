@@ -6,18 +6,8 @@ extern crate std;
 
 use super::super::sh9_q15::{error_bound, irradiance, pack};
 use super::super::*;
+use super::random_unit as unit;
 use crate::Rgb;
-
-/// A random unit vector as the crate makes one (`unit3` of a random vector of any magnitude).
-fn unit(next: &mut impl FnMut() -> u32) -> [Fixed22; 3] {
-    loop {
-        let shift = next() % 31;
-        let v = [0, 1, 2].map(|_| Fixed22::from_bits((next() as i32) >> shift));
-        if let Some(u) = Fixed22::unit3(v) {
-            return u;
-        }
-    }
-}
 
 /// The irradiance polynomial at `n` in f64, from the Q22 values.
 fn exact(k: &[i32; 9], n: [Fixed22; 3]) -> f64 {
