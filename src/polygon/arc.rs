@@ -152,6 +152,10 @@ mod q28 {
 
     const FRAC: u32 = 28;
     const ONE: i32 = 1 << FRAC;
+    /// Whether the exact products below go by 16-bit halves (ARMv6-M, whose 64-bit product is
+    /// a library call) or by the 64-bit product (elsewhere: one or two instructions, as on
+    /// RV32IMC's `MULH`); the same bits either way.
+    const HALVES: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
     #[inline(always)]
     fn mul(a: i32, b: i32) -> i32 {
@@ -181,13 +185,25 @@ mod q28 {
         Q32::new(((vh * vh) << 8) + ((vh * vl + ((vl * vl) >> 17)) >> 7))
     }
 
+    /// `v^2` (Q28) as a Q32 fraction: [`square_q32_by_halves`] on ARMv6-M, the 64-bit product
+    /// elsewhere ([`HALVES`]); the same bits.
+    #[inline(always)]
+    fn square28_q32(v: i32) -> Q32 {
+        let u = v.unsigned_abs();
+        if HALVES || u >= 1 << FRAC {
+            square_q32_by_halves(v)
+        } else {
+            Q32::new(((u64::from(u) * u64::from(u)) >> 24) as u32)
+        }
+    }
+
     /// `x y` in Q28 of `x`, `y` in Q22 with `|x|, |y| <= 2^22` (the inputs' bits): exactly
     /// `floor(x y / 2^16)`, the same as [`mul`] of the two shifted to Q28, from four 16 x 16-bit
     /// `MULS` without a carry word. With `x = xh 2^16 + xl` (`|xh| <= 2^6`, `0 <= xl < 2^16`)
     /// and `y` alike, `x y / 2^16 = xh yh 2^16 + xh yl + xl yh + xl yl / 2^16`, and only the
     /// last term has a fraction: the sum is at most `2^28 + 2^23 + 2^16` in magnitude.
     #[inline(always)]
-    fn mul22(x: i32, y: i32) -> i32 {
+    fn mul22_by_halves(x: i32, y: i32) -> i32 {
         let (xh, xl) = (x >> 16, x & 0xFFFF);
         let (yh, yl) = (y >> 16, y & 0xFFFF);
         ((xh * yh) << 16) + xh * yl + xl * yh + (((xl as u32) * (yl as u32)) >> 16) as i32
@@ -198,13 +214,36 @@ mod q28 {
     /// `|v| = vh 2^16 + vl < 2^22` (`vh <= 63`), `v^2 / 2^12 = vh^2 2^20 + vh vl 2^5 + vl^2 /
     /// 2^12`, below `2^32`.
     #[inline(always)]
-    fn square22_q32(v: i32) -> Q32 {
+    fn square22_q32_by_halves(v: i32) -> Q32 {
         let u = v.unsigned_abs();
         if u >= 1 << 22 {
             return Q32::new(u32::MAX);
         }
         let (vh, vl) = (u >> 16, u & 0xFFFF);
         Q32::new(((vh * vh) << 20) + ((vh * vl) << 5) + ((vl * vl) >> 12))
+    }
+
+    /// [`mul22_by_halves`] on ARMv6-M, the 64-bit product elsewhere ([`HALVES`]); the same
+    /// bits.
+    #[inline(always)]
+    fn mul22(x: i32, y: i32) -> i32 {
+        if HALVES {
+            mul22_by_halves(x, y)
+        } else {
+            ((i64::from(x) * i64::from(y)) >> 16) as i32
+        }
+    }
+
+    /// [`square22_q32_by_halves`] on ARMv6-M, the 64-bit product elsewhere ([`HALVES`]); the
+    /// same bits.
+    #[inline(always)]
+    fn square22_q32(v: i32) -> Q32 {
+        let u = v.unsigned_abs();
+        if HALVES || u >= 1 << 22 {
+            square22_q32_by_halves(v)
+        } else {
+            Q32::new(((u64::from(u) * u64::from(u)) >> 12) as u32)
+        }
     }
 
     /// See the module docs; the same arguments and results as [`super::cos_power_sums`].
@@ -235,7 +274,7 @@ mod q28 {
         let g = (mul22(a22, c) + mul22(b22, s)).clamp(-ONE, ONE);
         // (`g` in Q28 proper: its square from three `MULS` in `u32`, the bits of the 64-bit
         // product's; the call 9 365 -> 9 265 Cortex-M0 instructions.)
-        let (g2, a2) = (square_q32_by_halves(g), square22_q32(a22));
+        let (g2, a2) = (square28_q32(g), square22_q32(a22));
         let h = mul22(a22, s) - mul22(b22, c);
         let odd = n & 1 == 1;
         // t = T(k); l = G^(k+1) H, l2 = beta alpha^(k+1): ready for k + 2.
@@ -305,12 +344,19 @@ mod q28 {
             }
             for (i, &x) in vals.iter().enumerate() {
                 let y = vals[(i * 7919 + 13) % vals.len()];
+                assert_eq!(mul22_by_halves(x, y), mul(x << 6, y << 6), "{x} * {y}");
                 assert_eq!(mul22(x, y), mul(x << 6, y << 6), "{x} * {y}");
-                assert_eq!(mul22(x, x), mul(x << 6, x << 6), "{x}^2");
+                assert_eq!(mul22_by_halves(x, x), mul(x << 6, x << 6), "{x}^2");
+                assert_eq!(
+                    square22_q32_by_halves(x),
+                    square_q32(x << 6),
+                    "{x}^2 as Q32"
+                );
                 assert_eq!(square22_q32(x), square_q32(x << 6), "{x}^2 as Q32");
                 // Q28 values of every magnitude up to 1 (and beyond: clamped).
                 let v = x.wrapping_mul(64).wrapping_add(y & 63);
                 assert_eq!(square_q32_by_halves(v), square_q32(v), "{v}^2 as Q32 (Q28)");
+                assert_eq!(square28_q32(v), square_q32(v), "{v}^2 as Q32 (Q28)");
             }
         }
     }
