@@ -379,6 +379,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         // The last edge's end, its direction and r . direction: the next edge starts there
         // unless a horizon arc came between, so each vertex is normalized once.
         let mut last: Option<(Vec3<T>, UnitVec3<T>, T)> = None;
+        // (Fixed point) the walk's first vertex: its index, direction and r . direction, for
+        // the edge that closes the ring there, which would normalize it a second time (with
+        // `Uncached` directions: `phong_polygon` 9 351 -> 9 104 Cortex-M0 and 7 337 -> 7 118
+        // RV32IMC instructions, the same bits). The floats keep the second normalization: as
+        // written here the Cortex-M4F's f32 went 1 803 -> 1 806, and with the test on their
+        // walk too, 1 821.
+        let mut first: Option<(usize, (UnitVec3<T>, T))> = None;
         let near = for_each_clipped_edge(self.vertices(), p, r, r_min, |e| {
             if e.horizon {
                 // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
@@ -416,7 +423,20 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 Some((at, dir, rd)) if at == e.ua => Some((dir, rd)),
                 _ => unit(e.ia, e.ua).map(|a| (a, ru.dot_unit(a))),
             };
-            let end = unit(e.ib, e.ub).map(|b| (b, ru.dot_unit(b)));
+            // Fixed point: the first vertex's direction kept for the edge that ends there
+            // (the ring's last; a vertex ends one edge of the walk, so a later start does no
+            // harm).
+            let end = if T::RESOLUTION > T::ZERO {
+                if first.is_none() && e.ia != CROSSING {
+                    first = start.map(|a| (e.ia, a));
+                }
+                match first {
+                    Some((i, b)) if i == e.ib => Some(b),
+                    _ => unit(e.ib, e.ub).map(|b| (b, ru.dot_unit(b))),
+                }
+            } else {
+                unit(e.ib, e.ub).map(|b| (b, ru.dot_unit(b)))
+            };
             last = end.map(|(b, rb)| (e.ub, b, rb));
             // An edge whose coordinates or products leave the normal range at this scale
             // (below TINY or beyond 1/TINY in absolute terms): the same edge scaled by a power
@@ -481,9 +501,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 9 351 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 9 351 to 11 369 where the reflection meets the quad; at m = 15, in a build of the
-    /// budget at that exponent, 8 894; 9 511 before a horizon arc within a right angle came
+    /// 9 104 instructions (median of the budget's 16 cases, a case the test does not prove;
+    /// 9 104 to 11 133 where the reflection meets the quad; at m = 15, in a build of the
+    /// budget at that exponent, 8 647; with a `UnitVec3` 8 858 and 8 401; 9 351 (m = 15:
+    /// 8 894) before the walk kept its first vertex's direction for the ring's closing edge;
+    /// 9 511 before a horizon arc within a right angle came
     /// from its ends' unit directions, `horizon_unit_angle`; 9 611 before the recurrence's
     /// `g^2` came from three `MULS`; 10 043 before the unit edges' plane came from one
     /// reciprocal square root without its unit normal and triple product,
@@ -505,7 +527,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 797 (1 839 before the fan
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 806 (1 797 before the
+    /// fixed-point horizon arcs and first-vertex cache shared its walk's code; 1 839 before the fan
     /// triangles' half angles went from the arc tangent to the arc ratio, `fan_half_angle`; at
     /// m = 15, in a build of the budget at that exponent, 1 702, 1 772 with `x` by the arc
     /// tangent where `R(cos x) sin x` now gives it; 1 894 before later changes, 1 941 before the plane
