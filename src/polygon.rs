@@ -68,6 +68,8 @@ pub(crate) use arc::arc_axis_f;
 pub(crate) use arc::arc_axis_form;
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use arc::cos_power_sums;
+#[cfg(feature = "phong")]
+pub(crate) use clip::for_each_clipped_edge_by;
 pub(crate) use clip::{for_each_clipped_edge, for_each_unclipped_edge, ApexFan};
 #[cfg(any(feature = "phong", feature = "moments"))]
 pub(crate) use clip::{ClippedEdge, CROSSING};
@@ -76,7 +78,9 @@ pub(crate) use edge::offset_products;
 #[cfg(feature = "phong")]
 pub(crate) use edge::products_in_range;
 #[cfg(feature = "phong")]
-pub(crate) use negligible::{floats_ball_below, phong_negligible_with};
+pub(crate) use negligible::{
+    floats_ball_below, phong_negligible_with, HEIGHTS as NEGLIGIBLE_HEIGHTS,
+};
 use validate::validate_polygon;
 pub(crate) use validate::validate_polygon_f64;
 
@@ -473,7 +477,17 @@ fn in_plane<T: Real>(verts: &[Vec3<T>], normal: Vec3<T>, p: Vec3<T>) -> bool {
     // coordinate limit, which every caller checks): the bits of `Vec3::dot`.
     let dist = T::dot3_small([normal.x, normal.y, normal.z], [d.x, d.y, d.z]);
     let tol = if T::RESOLUTION > T::ZERO {
-        T::RESOLUTION * (T::from_f64(IN_PLANE_REL) * d.max_abs() + T::from_f64(IN_PLANE_ABS))
+        // `RESOLUTION (1.5 |d|_max + 3)` in the raw units of `2^-22` (`Fixed22`'s, whose
+        // products are exact floors, its sums and absolute values saturating):
+        // `floor(1.5 m) = m + floor(m/2)` for `m >= 0`, and the product by the resolution
+        // `floor(B / 2^22)`: the same bits as the type's own `*`, `+` and `max_abs`, without
+        // two full products and the NaN-aware maxima (the test 156 -> 140 Cortex-M0
+        // instructions, traced; `polygon_lambert` and `phong_polygon` take it).
+        const _: () = assert!(IN_PLANE_REL == 1.5 && IN_PLANE_ABS == 3.0);
+        let raw = |c: T| c.to_fixed_i32(22).saturating_abs();
+        let m = raw(d.x).max(raw(d.y)).max(raw(d.z));
+        let b = m.saturating_add(m >> 1).saturating_add(3 << 22);
+        T::from_fixed_i32(b >> 22, 22)
     } else {
         // The floats: beyond `4 EPSILON |d|_1` (at least the tolerance's `|d|_max`), `p` is
         // off the plane without the NaN-aware maximum (the answer for every `p` not within a

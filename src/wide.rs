@@ -84,6 +84,12 @@ impl Q32 {
             lo: m & 0xFFFF,
         }
     }
+
+    /// Whether the fraction is 0.
+    #[inline(always)]
+    pub(crate) fn is_zero(self) -> bool {
+        self.hi | self.lo == 0
+    }
 }
 
 /// `x m / 2^32` for a signed `x` and the fraction `m`, within one unit of its floor (the high

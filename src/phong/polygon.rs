@@ -5,9 +5,9 @@
 
 use crate::lobe::negligible_terms;
 use crate::polygon::{
-    arc_axis_f, cos_power_sums, floats_ball_below, for_each_clipped_edge, near_limit,
+    arc_axis_f, cos_power_sums, floats_ball_below, for_each_clipped_edge_by, near_limit,
     offset_products, phong_near_log2, phong_negligible_with, products_in_range, ClippedEdge,
-    PolygonLight, Uncached, VertexDirections, CROSSING,
+    PolygonLight, Uncached, VertexDirections, CROSSING, NEGLIGIBLE_HEIGHTS,
 };
 use crate::unit::Direction;
 use crate::{Error, PhongLobe, Real, UnitVec3, Vec3};
@@ -195,7 +195,8 @@ fn horizon_arc_fixed<T: Real>(
         _ => e.ua.to_unit(),
     };
     let b = e.ub.to_unit();
-    *last = b.map(|b| (e.ub, b, r.dot_unit(b)));
+    // (The entry lies on the horizon: `r.b` is 0, up to the roundings of `b`.)
+    *last = b.map(|b| (e.ub, b, T::ZERO));
     match a.zip(b).and_then(|(a, b)| horizon_unit_angle(a, b, r)) {
         Some(angle) => angle,
         None => e.horizon_angle(r.into_inner()),
@@ -363,8 +364,20 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         }
         // Fixed point, f32 and Fast32: a term provably below 2^-24 is 0
         // (`polygon/negligible.rs`).
+        // (Fixed point: the vertices' heights, which the test leaves for the walk below.)
+        let mut heights = [T::ZERO; NEGLIGIBLE_HEIGHTS];
+        let mut have_heights = 0;
         if T::RESOLUTION > T::ZERO {
-            if phong_negligible_with(self.vertices(), self.ball(), p, ru, lobe, r_min, dirs) {
+            if phong_negligible_with(
+                self.vertices(),
+                self.ball(),
+                p,
+                ru,
+                lobe,
+                r_min,
+                dirs,
+                (&mut heights, &mut have_heights),
+            ) {
                 return Ok(T::ZERO);
             }
         } else if negligible_terms::<T>() && floats_ball_below(self.ball(), p, ru, lobe) {
@@ -382,11 +395,16 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         // (Fixed point) the walk's first vertex: its index, direction and r . direction, for
         // the edge that closes the ring there, which would normalize it a second time (with
         // `Uncached` directions: `phong_polygon` 9 351 -> 9 104 Cortex-M0 and 7 337 -> 7 118
-        // RV32IMC instructions, the same bits). The floats keep the second normalization: as
-        // written here the Cortex-M4F's f32 went 1 803 -> 1 806, and with the test on their
-        // walk too, 1 821.
+        // RV32IMC instructions, the same bits). The floats keep the second normalization: with
+        // this alone the Cortex-M4F's f32 went 1 803 -> 1 806 (1 821 with the test on their
+        // walk too; 1 803 again after the walk took the heights, `for_each_clipped_edge_by`).
         let mut first: Option<(usize, (UnitVec3<T>, T))> = None;
-        let near = for_each_clipped_edge(self.vertices(), p, r, r_min, |e| {
+        let rv = [r.x, r.y, r.z];
+        let height = |i: usize, u: Vec3<T>| match heights.get(i) {
+            Some(&h) if i < have_heights => h,
+            _ => T::dot3_small([u.x, u.y, u.z], rv),
+        };
+        let near = for_each_clipped_edge_by(self.vertices(), p, r_min, height, |e| {
             if e.horizon {
                 // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
                 // m the fan's triangle is the same signed arc. Fixed point takes an arc within a
@@ -432,6 +450,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 }
                 match first {
                     Some((i, b)) if i == e.ib => Some(b),
+                    // (A crossing lies on the horizon: `r.b` is 0, up to the roundings of
+                    // `b`; its dot product spared.)
+                    _ if e.ib == CROSSING => unit(e.ib, e.ub).map(|b| (b, T::ZERO)),
                     _ => unit(e.ib, e.ub).map(|b| (b, ru.dot_unit(b))),
                 }
             } else {
@@ -501,10 +522,13 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 9 104 instructions (median of the budget's 16 cases, a case the test does not prove;
-    /// 9 104 to 11 133 where the reflection meets the quad; at m = 15, in a build of the
-    /// budget at that exponent, 8 647; with a `UnitVec3` 8 858 and 8 401; 9 351 (m = 15:
-    /// 8 894) before the walk kept its first vertex's direction for the ring's closing edge;
+    /// 8 659 instructions (median of the budget's 16 cases, a clipped case the test does not
+    /// prove; 8 659 to 10 711 where the reflection meets the quad; at m = 15, in a build of
+    /// the budget at that exponent, 8 214; with a `UnitVec3` 8 423 and, at m = 15, 7 978;
+    /// 9 104 (m = 15: 8 647) before the walk took the vertices' heights from the
+    /// negligibility test, a crossing's `r.b` as 0 and an arc from or to the horizon the
+    /// recurrence with one geometric sequence (`polygon::arc`); 9 351 (m = 15: 8 894) before
+    /// the walk kept its first vertex's direction for the ring's closing edge;
     /// 9 511 before a horizon arc within a right angle came
     /// from its ends' unit directions, `horizon_unit_angle`; 9 611 before the recurrence's
     /// `g^2` came from three `MULS`; 10 043 before the unit edges' plane came from one
@@ -527,8 +551,8 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 806 (1 797 before the
-    /// fixed-point horizon arcs and first-vertex cache shared its walk's code; 1 839 before the fan
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 803 (1 797 before the
+    /// fixed-point horizon arcs shared its walk's code; 1 839 before the fan
     /// triangles' half angles went from the arc tangent to the arc ratio, `fan_half_angle`; at
     /// m = 15, in a build of the budget at that exponent, 1 702, 1 772 with `x` by the arc
     /// tangent where `R(cos x) sin x` now gives it; 1 894 before later changes, 1 941 before the plane

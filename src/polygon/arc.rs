@@ -296,21 +296,48 @@ mod q28 {
                 22,
             )
         };
-        while k < n {
-            sum += i64::from(t);
-            if let Some((coef, budget)) = stop {
-                if coef * cpow <= budget {
-                    return (out(sum), T::ZERO);
+        // An arc that starts or ends on the horizon (the Phong walk's crossings: `a = r.a` is
+        // 0 at a crossing up, `G = r.b` a few units of rounding at a crossing down): a factor
+        // `a^2` or `g^2` of 0, whose sequence is 1 after its first step (`mul_q32` of
+        // anything by 0 is its rounding unit) and needs no product. The loop with one
+        // sequence: the same bits, 64 instead of 77 Cortex-M0 instructions a step. Measured
+        // on the budget's `phong_polygon` quad at m = 15 with a `UnitVec3`: the clipped calls
+        // 8 106 -> 7 978 (the median), the unclipped ones 8 660 -> 8 743 (the test and the
+        // second loop cost each edge about 21; out of line, the loop cost the clipped calls
+        // their saving); the board demo's shader (`demo_shade`, 33 calls) 414 181 -> 413 813.
+        if !(stop.is_none() && (a2.is_zero() || g2.is_zero())) {
+            while k < n {
+                sum += i64::from(t);
+                if let Some((coef, budget)) = stop {
+                    if coef * cpow <= budget {
+                        return (out(sum), T::ZERO);
+                    }
+                    cpow *= f;
                 }
-                cpow *= f;
+                k += 2;
+                // 1/k from the table, for either parity.
+                let r = recip_q32(k);
+                let u = mul_q32(t, fq);
+                t = u + mul_q32(l + l2 - u, Q32::new(r));
+                l = mul_q32(l, g2);
+                l2 = mul_q32(l2, a2);
             }
-            k += 2;
-            // 1/k from the table, for either parity.
-            let r = recip_q32(k);
-            let u = mul_q32(t, fq);
-            t = u + mul_q32(l + l2 - u, Q32::new(r));
-            l = mul_q32(l, g2);
-            l2 = mul_q32(l2, a2);
+        } else {
+            // `s` the sequence that lives (by `q`), `c` the other: its first value, then 1.
+            let (mut s, mut c, q) = if a2.is_zero() {
+                (l, l2, g2)
+            } else {
+                (l2, l, a2)
+            };
+            while k < n {
+                sum += i64::from(t);
+                k += 2;
+                let r = recip_q32(k);
+                let u = mul_q32(t, fq);
+                t = u + mul_q32(s + c - u, Q32::new(r));
+                s = mul_q32(s, q);
+                c = 1;
+            }
         }
         (out(sum), T::from_fixed_i32(t, FRAC))
     }

@@ -225,11 +225,36 @@ pub(crate) fn for_each_unclipped_edge<T: Real>(
 /// (every caller checks them): the offsets `v - p` are then at most 8 in magnitude on fixed
 /// point, and their products with `k` need no saturation test (the sealed `dot3_small`, the
 /// bits of `Vec3::dot`).
+#[inline(always)]
 pub(crate) fn for_each_clipped_edge<T: Real, F>(
     verts: &[Vec3<T>],
     p: Vec3<T>,
     k: Vec3<T>,
     r_min: T,
+    f: F,
+) -> bool
+where
+    F: FnMut(ClippedEdge<T>),
+{
+    let kv = [k.x, k.y, k.z];
+    for_each_clipped_edge_by(
+        verts,
+        p,
+        r_min,
+        |_, u| T::dot3_small([u.x, u.y, u.z], kv),
+        f,
+    )
+}
+
+/// [`for_each_clipped_edge`] with each vertex's height `(v - p).k` from `height(i, v - p)`
+/// for the vertex of index `i`: the fixed-point Phong walk's, which takes them from the
+/// negligibility test that computed them (the same bits), where the walk itself computes
+/// each vertex's height once or twice more (the first vertex's three times).
+pub(crate) fn for_each_clipped_edge_by<T: Real, F>(
+    verts: &[Vec3<T>],
+    p: Vec3<T>,
+    r_min: T,
+    height: impl Fn(usize, Vec3<T>) -> T,
     mut f: F,
 ) -> bool
 where
@@ -237,8 +262,6 @@ where
 {
     let near_point = |u: Vec3<T>| T::RESOLUTION > T::ZERO && T::all_within([u.x, u.y, u.z], r_min);
     let nv = verts.len();
-    let kv = [k.x, k.y, k.z];
-    let height = |u: Vec3<T>| T::dot3_small([u.x, u.y, u.z], kv);
     // An edge scaled by a fraction `t` in [0, 1]: `edge * t`, bit for bit, without fixed
     // point's saturation tests (`mul_unit`: the product is at most the edge).
     let scaled = |e: Vec3<T>, t: T| {
@@ -250,7 +273,8 @@ where
     };
     let Some(start) = verts
         .iter()
-        .position(|&v| height(v.offset_from(p)) >= T::ZERO)
+        .enumerate()
+        .position(|(i, &v)| height(i, v.offset_from(p)) >= T::ZERO)
     else {
         // Nothing above: only the vertices' distances to test (fixed point).
         return T::RESOLUTION > T::ZERO && verts.iter().any(|&v| near_point(v.offset_from(p)));
@@ -263,7 +287,7 @@ where
     };
     let (mut v0, mut i1) = (first, start);
     let mut u0 = v0.offset_from(p);
-    let mut d0 = height(u0);
+    let mut d0 = height(start, u0);
     // The start of the current clipped edge (a vertex or a crossing up), and its vertex
     // index (or `CROSSING`).
     let mut a0 = u0;
@@ -281,7 +305,7 @@ where
         };
         let u1 = v1.offset_from(p);
         near |= near_point(u1);
-        let d1 = height(u1);
+        let d1 = height(i1, u1);
         let below1 = d1 < T::ZERO;
         let edge = v1.offset_from(v0);
         v0 = v1;

@@ -284,6 +284,7 @@ mod tests {
                 &lobe,
                 r_min,
                 &mut crate::polygon::Uncached,
+                (&mut [T::ZERO; crate::polygon::NEGLIGIBLE_HEIGHTS], &mut 0),
             ) {
                 let r64 = Vec3::<f64>::from_f64(ru.into_inner().to_f64());
                 let term = exact.phong(&lobe64, p, r64);
