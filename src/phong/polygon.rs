@@ -5,9 +5,9 @@
 
 use crate::lobe::negligible_terms;
 use crate::polygon::{
-    arc_axis_f, cos_power_sums, floats_ball_below, for_each_clipped_edge_by, near_limit,
-    offset_products, phong_near_log2, phong_negligible_with, products_in_range, ClippedEdge,
-    PolygonLight, Uncached, VertexDirections, CROSSING, NEGLIGIBLE_HEIGHTS,
+    arc_axis_f, cos_power_sums, floats_ball_below, for_each_clipped_edge, for_each_clipped_edge_by,
+    near_limit, offset_products, phong_near_log2, phong_negligible_with, products_in_range,
+    ClippedEdge, PolygonLight, Uncached, VertexDirections, CROSSING, NEGLIGIBLE_HEIGHTS,
 };
 use crate::unit::Direction;
 use crate::{Error, PhongLobe, Real, UnitVec3, Vec3};
@@ -404,7 +404,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             Some(&h) if i < have_heights => h,
             _ => T::dot3_small([u.x, u.y, u.z], rv),
         };
-        let near = for_each_clipped_edge_by(self.vertices(), p, r_min, height, |e| {
+        let edge = |e: ClippedEdge<T>| {
             if e.horizon {
                 // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
                 // m the fan's triangle is the same signed arc. Fixed point takes an arc within a
@@ -492,7 +492,15 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
                 fan += w;
             }
             sum += j;
-        });
+        };
+        // (The floats' walk computes its own heights: through the closure above the Cortex-M4F
+        // demo's per-pixel frame 0 took 19.89 M instructions where it takes 19.99 M,
+        // `boards/qemu-frame`.)
+        let near = if T::RESOLUTION > T::ZERO {
+            for_each_clipped_edge_by(self.vertices(), p, r_min, height, edge)
+        } else {
+            for_each_clipped_edge(self.vertices(), p, r, r_min, edge)
+        };
         if T::RESOLUTION > T::ZERO && (near || beside) {
             return Err(Error::Unresolved("p"));
         }
@@ -522,9 +530,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// from its ends' unit directions instead of the offsets' products and the pair's
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
-    /// 8 659 instructions (median of the budget's 16 cases, a clipped case the test does not
-    /// prove; 8 659 to 10 711 where the reflection meets the quad; at m = 15, in a build of
-    /// the budget at that exponent, 8 214; with a `UnitVec3` 8 423 and, at m = 15, 7 978;
+    /// 8 664 instructions (median of the budget's 16 cases, a clipped case the test does not
+    /// prove; 8 664 to 10 720 where the reflection meets the quad; at m = 15, in a build of
+    /// the budget at that exponent, 8 219; with a `UnitVec3` 8 436 and, at m = 15, 7 991;
     /// 9 104 (m = 15: 8 647) before the walk took the vertices' heights from the
     /// negligibility test, a crossing's `r.b` as 0 and an arc from or to the horizon the
     /// recurrence with one geometric sequence (`polygon::arc`); 9 351 (m = 15: 8 894) before
@@ -551,8 +559,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 803 (1 797 before the
-    /// fixed-point horizon arcs shared its walk's code; 1 839 before the fan
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 809 (1 803 before the
+    /// fixed-point walk took its heights from the negligibility test, whose code it shares;
+    /// 1 797 before the fixed-point horizon arcs did; 1 839 before the fan
     /// triangles' half angles went from the arc tangent to the arc ratio, `fan_half_angle`; at
     /// m = 15, in a build of the budget at that exponent, 1 702, 1 772 with `x` by the arc
     /// tangent where `R(cos x) sin x` now gives it; 1 894 before later changes, 1 941 before the plane

@@ -271,11 +271,14 @@ where
             T::mul_unit(e.z, t),
         )
     };
-    let Some(start) = verts
-        .iter()
-        .enumerate()
-        .position(|(i, &v)| height(i, v.offset_from(p)) >= T::ZERO)
-    else {
+    // (The index counted by hand: through `enumerate` the Cortex-M4F demo's per-pixel frame
+    // 0 took 19.99 M instructions where it takes 19.89 M, `boards/qemu-frame`.)
+    let mut i = 0;
+    let Some(start) = verts.iter().position(|&v| {
+        let above = height(i, v.offset_from(p)) >= T::ZERO;
+        i += 1;
+        above
+    }) else {
         // Nothing above: only the vertices' distances to test (fixed point).
         return T::RESOLUTION > T::ZERO && verts.iter().any(|&v| near_point(v.offset_from(p)));
     };

@@ -94,9 +94,10 @@ pub(crate) const HEIGHTS: usize = 4;
 /// quick rejection stops it, about 3 000 for the whole test (the module doc).
 ///
 /// The vertices' unit directions from `p` are taken from `dirs` (shared with the Phong walk
-/// that follows: `VertexDirs`; or `Uncached`). Fixed point: the heights `r.(v - p)` (the bits
-/// of `Vec3::dot`) the quick rejection computes, of the first `*filled` vertices, are left in
-/// `heights` for the walk, which then does not compute them again.
+/// that follows: `VertexDirs`; or `Uncached`). Fixed point: `*filled` is the number of
+/// vertices whose heights `r.(v - p)` (the bits of `Vec3::dot`) the quick rejection computed,
+/// from the first; those within [`HEIGHTS`] are left in `heights` for the walk, which then
+/// does not compute them again.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 pub(crate) fn phong_negligible_with<T: Real>(
