@@ -16,6 +16,7 @@
 //                                                     (after cargo test -p host-sim --test qemu_budget)
 //   budget-unit      target/budget/budget-unit.md     the same command (the calls with a UnitVec3)
 //   budget-world     target/budget/budget-world.md    the same command (the world-coordinate lights)
+//   budget-bar       target/budget/budget-bar.md      the same command (phong_polygon at m = 15)
 //   sizes            boards/size-probe/sizes.md       boards/size-probe/measure.sh boards/size-probe/sizes.md
 //   scene-budget     target/scene-budget/demo-rp2040-answer.md
 //   scene-checks     target/scene-budget/checks.md    .ci/run's scene budget step (host-sim budget

@@ -8,7 +8,8 @@
 //! what each column is), `DIR/budget-table.md` (the deterministic tables alone: instruction
 //! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-unit.md`
 //! (the calls that take a normal, with a `Vec3` and with a `UnitVec3`), `DIR/budget-world.md`
-//! (the positional lights in world coordinates against plain ones), `DIR/budget-host.md`
+//! (the positional lights in world coordinates against plain ones), `DIR/budget-bar.md`
+//! (`phong_polygon` at issues 12 and 13's exponent, m = 15), `DIR/budget-host.md`
 //! (the host times, one machine's) and `DIR/budget.png` (host time against max error, log-log,
 //! Pareto front highlighted).
 //!
@@ -37,6 +38,9 @@ use arealight::{Fast32, Fixed22, Real};
 use clap::Args;
 
 #[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/bar_cases.rs"]
+mod bar_cases;
+#[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/cases.rs"]
 mod cases;
 #[allow(dead_code)]
@@ -53,7 +57,9 @@ mod tables;
 pub use chart::plot;
 #[cfg(test)]
 use tables::pareto;
-pub use tables::{csv, host_times, markdown, pareto_by, unit_markdown, world_markdown};
+pub use tables::{
+    bar_markdown, csv, host_times, markdown, pareto_by, unit_markdown, world_markdown,
+};
 
 /// The CSV header (fixed by the issue), then the RISC-V counts (issue 12), last so that the
 /// issue's columns keep their positions.
@@ -500,6 +506,10 @@ pub fn run(args: &BudgetArgs) -> Result<Vec<PathBuf>, String> {
         write(
             "budget-world.md",
             world_markdown(&read_counts(&args.counts)).as_bytes(),
+        )?,
+        write(
+            "budget-bar.md",
+            bar_markdown(&read_counts(&args.counts)).as_bytes(),
         )?,
         write("budget.png", &png)?,
     ];

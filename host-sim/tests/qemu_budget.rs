@@ -13,13 +13,15 @@
 //!   target of the f64 reference computed here from the same (rounded) inputs;
 //! - the `U` lines (the calls with a unit direction) answer the `V` lines' bits, and the `W`
 //!   lines (the positional lights in world coordinates, 1000 units out) are within the
-//!   accuracy target of the plain cases' reference (`support/unit_rows.rs`,
-//!   `support/world_rows.rs`);
+//!   accuracy target of the plain cases' reference, and the `B` lines (`phong_polygon` at
+//!   the bars' exponent m = 15) within it of f64 at that exponent (`support/unit_rows.rs`,
+//!   `support/world_rows.rs`, `support/bar_rows.rs`);
 //! - the M0 image gives bit-identical values on `microbit` (a real Cortex-M0 model); it is
-//!   built and run as three parts ([`M0_PARTS`]: the models, the rest, the world lights),
-//!   each of which fits the micro:bit's 256 KB where the whole no longer does, the other
-//!   targets' as two ([`PARTS`]: the world lights apart, so that they do not change the
-//!   plain kernels' inlining), and each target's lines are read as one image's;
+//!   built and run as four parts ([`M0_PARTS`]: the models, the rest, the world lights, the
+//!   bars' cases), each of which fits the micro:bit's 256 KB where the whole no longer does,
+//!   the other targets' as three ([`PARTS`]: the world lights and the bars' cases apart, so
+//!   that they do not change the plain kernels' inlining), and each target's lines are read
+//!   as one image's;
 //! - the board demo's vertex shade (`D` lines: `Lit::shade` with the demo's lights and
 //!   materials, `Fixed22` on the M0, f32 on the M4F) is within the backend's target of f64,
 //!   scaled by the colour weights the model values are multiplied by.
@@ -33,6 +35,8 @@
 //! `qemu-system-misc`) for the RISC-V target alone (the ARM targets still run). Run it alone
 //! with `cargo test -p host-sim --test qemu_budget`.
 
+#[path = "support/bar_rows.rs"]
+mod bar_rows;
 #[path = "support/kernel_sizes.rs"]
 mod kernel_sizes;
 #[path = "support/process.rs"]
@@ -49,6 +53,9 @@ use kernel_sizes::{kernel_sizes, kernel_symbol};
 use process::{root, run};
 use qemu_output::{check_counter, check_no_wrap, parse, Line};
 
+#[allow(dead_code)]
+#[path = "../../boards/qemu-budget/src/bar_cases.rs"]
+mod bar_cases;
 #[allow(dead_code)]
 #[path = "../../boards/qemu-budget/src/cases.rs"]
 mod cases;
@@ -116,16 +123,18 @@ fn qemu_binary(triple: &str) -> &'static str {
 
 /// The parts the Cortex-M0 image is built as (`QEMU_BUDGET_PART` of `boards/qemu-budget`):
 /// every backend's models, then the demo shader, the alternatives and the scene, then the
-/// world lights. The whole image came within 450 bytes of the micro:bit's 256 KB; the models
+/// world lights, then the bars' cases (`phong_polygon` at m = 15, apart for the same reason
+/// as the world lights: [`PARTS`]). The whole image came within 450 bytes of the micro:bit's 256 KB; the models
 /// alone take about 200 KB. (Measured when split: every value bit for bit the whole image's,
 /// and the counts within 0.4 % of it but for `sky_ground` and `sh9_irradiance` with a unit
 /// normal, -3.4 % and +2.7 %: LLVM inlines a little differently into the smaller image.)
-const M0_PARTS: [&str; 3] = ["models", "extras", "world"];
+const M0_PARTS: [&str; 4] = ["models", "extras", "world", "bar"];
 
 /// The parts of the other targets' images: everything but the world lights, then those,
 /// which share the plain lights' functions and would change their inlining into the plain
-/// kernels (see `boards/qemu-budget/src/main.rs`, `PART`).
-const PARTS: [&str; 2] = ["main", "world"];
+/// kernels (see `boards/qemu-budget/src/main.rs`, `PART`), then the bars' cases, which call
+/// the polygon's Phong term with another lobe (a second caller likewise).
+const PARTS: [&str; 3] = ["main", "world", "bar"];
 
 /// Builds the image for `target` (only the cases of `part`, if given) into `target_dir`.
 fn build(
@@ -361,6 +370,7 @@ fn check_target(
             .map_or(0.0, |b| (b.tolerance)(model))
     };
     world_rows::check(short, &out, refs, &tolerance, rows, &mut failures);
+    bar_rows::check(short, &out, rows, &mut failures);
     check_sqrt(short, &out, &mut failures);
     if !out.lines().any(|l| l.starts_with("D ")) {
         failures.push(format!("{short}: no D lines (the demo shade did not run)"));
@@ -373,11 +383,11 @@ fn check_target(
         let (lines, _) = parse(out)?;
         let out2 = qemu(triple, m, elf)?;
         let (lines2, _) = parse(&out2)?;
-        // The D, U and W lines too (their count in the fifth field), without their counts
+        // The D, U, W and B lines too (their count in the fifth field), without their counts
         // (0 there).
         let shades = |o: &str| -> Vec<String> {
             o.lines()
-                .filter(|l| l.starts_with("D ") || l.starts_with("U ") || l.starts_with("W "))
+                .filter(|l| ["D ", "U ", "W ", "B "].iter().any(|k| l.starts_with(k)))
                 .map(|l| {
                     let f: Vec<&str> = l.split_whitespace().collect();
                     format!("{} {}", f[..4].join(" "), f[5..].join(" "))
@@ -420,6 +430,7 @@ fn row_name(index: usize) -> &'static str {
         .or_else(|| demo_shade::CASES.get(index - DEMO_ROW).map(|c| c.0))
         .or_else(|| unit_rows::row_name(index))
         .or_else(|| world_rows::row_name(index))
+        .or_else(|| bar_rows::row_name(index))
         .unwrap_or("?")
 }
 

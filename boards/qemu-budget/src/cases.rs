@@ -25,6 +25,14 @@ pub const MOMENT_M: u32 = 4;
 pub const LINE_K: u32 = 2;
 /// The number of directions of [`ring`].
 pub const RING: usize = 16;
+/// The vertices of the polygon cases' light: a 2 x 2 square in the plane z = 2, above the
+/// shading point (the origin).
+pub const QUAD: [[f64; 3]; 4] = [
+    [-1.0, -1.0, 2.0],
+    [1.0, -1.0, 2.0],
+    [1.0, 1.0, 2.0],
+    [-1.0, 1.0, 2.0],
+];
 
 /// Every model id of `models.md`, in the order of the tables there.
 pub const MODELS: [&str; 27] = [
@@ -212,12 +220,7 @@ impl<T: Real> Lights<T> {
             move |error| CaseError { model, error }
         };
         let z = v(0.0, 0.0, 1.0);
-        let quad = [
-            v(-1.0, -1.0, 2.0),
-            v(1.0, -1.0, 2.0),
-            v(1.0, 1.0, 2.0),
-            v(-1.0, 1.0, 2.0),
-        ];
+        let quad = QUAD.map(|[x, y, z]| v(x, y, z));
         let sh9 = Sh9::<T>::environment(Environment::GraceCathedral).prepare();
         Ok(Lights {
             hemi: HemisphereLight::new(z).map_err(err("hemi_const"))?,

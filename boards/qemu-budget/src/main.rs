@@ -22,6 +22,13 @@
 //! W <backend> <model> <input> <instructions> <value bits as hex>
 //! ```
 //!
+//! and, on the same backends again, the cases of [`bar_cases::BAR_CASES`] (`phong_polygon` at
+//! the bars' exponent m = 15, with a `Vec3` and with a `UnitVec3`),
+//!
+//! ```text
+//! B <backend> <row> <input> <instructions> <value bits as hex>
+//! ```
+//!
 //! then, for the alternatives of [`points`] (point lights, k-sample area lights; f32 only),
 //!
 //! ```text
@@ -91,6 +98,7 @@
 #![no_std]
 #![no_main]
 
+mod bar_cases;
 mod cases;
 #[cfg(target_arch = "arm")]
 mod counter;
@@ -286,13 +294,49 @@ fn run_world<T: cases::Backend, M: Meter>(meter: &mut M) {
     }
 }
 
+/// The `B` lines: `phong_polygon` at the bars' exponent ([`bar_cases`]), on the same backends
+/// as the `U` lines. Not inlined: the bar's light lives only while it runs.
+#[inline(never)]
+fn run_bar<T: cases::Backend, M: Meter>(meter: &mut M) {
+    if !(cfg!(target_abi = "eabihf") || T::FIXED) || !selected(MODELS[bar_cases::BAR_MODEL]) {
+        return;
+    }
+    let name = T::NAME;
+    let ring = |i| cases::ring(i);
+    let dirs = Dirs {
+        count: RING,
+        get: &ring,
+    };
+    let lights = match bar_cases::BarLights::<T>::new(|x| x) {
+        Ok(l) => l,
+        Err(e) => fail(
+            &mut Line::new(),
+            format_args!("{name}: the bar's light refused its parameters: {e:?}"),
+        ),
+    };
+    for (case, &(row, _)) in bar_cases::BAR_CASES.iter().enumerate() {
+        let mut out = Line::new();
+        bar_cases::run_bar(&lights, case, dirs, |x| x, meter, &mut |s| {
+            let _ = write!(
+                out,
+                "B {name} {row} {} {} {:016x}",
+                s.input,
+                s.count,
+                s.value[0].to_bits()
+            );
+            out.send();
+        });
+    }
+}
+
 /// The profiling filter (see the module docs): `None` runs everything.
 const ONLY: Option<&str> = option_env!("QEMU_BUDGET_ONLY");
 
 /// Which cases the image runs: all of them, or with `QEMU_BUDGET_PART` set at build time
 /// only the models (`models`: every backend's `V` and `U` lines), only the rest (`extras`:
-/// the demo shader, the alternatives, the scene), both (`main`), or only the world lights
-/// (`world`: the `W` lines). `host-sim/tests/qemu_budget.rs` builds the Cortex-M0 image as
+/// the demo shader, the alternatives, the scene), both (`main`), only the world lights
+/// (`world`: the `W` lines), or only the bars' cases (`bar`: the `B` lines, apart for the
+/// same reason as the world lights). `host-sim/tests/qemu_budget.rs` builds the Cortex-M0 image as
 /// `models`, `extras` and `world` (all of it no longer fits the micro:bit's 256 KB; each
 /// part is checked on the micro:bit alone) and the others as `main` and `world`, and reads
 /// their lines as one image's. The world lights are an image apart on every target: they
@@ -304,15 +348,18 @@ const PART: Option<&str> = option_env!("QEMU_BUDGET_PART");
 const RUN_MODELS: bool = part_runs("models");
 const RUN_EXTRAS: bool = part_runs("extras");
 const RUN_WORLD: bool = part_runs("world");
+const RUN_BAR: bool = part_runs("bar");
 
 /// Whether the part `name` runs (every part without `QEMU_BUDGET_PART`; `main` is every
-/// part but `world`).
+/// part but `world` and `bar`).
 const fn part_runs(name: &str) -> bool {
     match PART {
         None => true,
         Some(part) => {
             cases::str_eq(part, name)
-                || (cases::str_eq(part, "main") && !cases::str_eq(name, "world"))
+                || (cases::str_eq(part, "main")
+                    && !cases::str_eq(name, "world")
+                    && !cases::str_eq(name, "bar"))
         }
     }
 }
@@ -459,6 +506,14 @@ fn main() -> ! {
     }
     if RUN_WORLD {
         for_each_backend!(run_w);
+    }
+    macro_rules! run_b {
+        ($t:ty) => {
+            run_bar::<$t, _>(&mut m)
+        };
+    }
+    if RUN_BAR {
+        for_each_backend!(run_b);
     }
     // One backend per core (the M0 image must fit the micro:bit's 256 KB): the float path
     // on the M4F, fixed point on the M0, as the boards run them.

@@ -1,10 +1,11 @@
 //! The budget's text outputs: `budget.csv`, the markdown tables (`budget.md`,
-//! `budget-table.md`, `budget-unit.md`, `budget-world.md`, `budget-host.md`) and the Pareto
+//! `budget-table.md`, `budget-unit.md`, `budget-world.md`, `budget-bar.md`, `budget-host.md`)
+//! and the Pareto
 //! fronts they mark.
 
 use std::fmt::Write as _;
 
-use super::{cases, points, world_cases, Counts, Kind, Row, HEADER, MODELS};
+use super::{bar_cases, cases, points, world_cases, Counts, Kind, Row, HEADER, MODELS};
 
 fn opt(x: Option<u64>) -> String {
     x.map(|v| v.to_string()).unwrap_or_default()
@@ -172,9 +173,37 @@ pub fn unit_markdown(counts: &Counts) -> String {
     paired_markdown(counts, ["`Vec3` n", "`UnitVec3` n"], &cases::UNIT_CASES)
 }
 
+/// `phong_polygon` at the exponent of issues 12 and 13's bars (`bar_cases.rs`: m = 15), with
+/// the reflection direction as a `Vec3` and as a `UnitVec3`, from the QEMU harness's
+/// `phong_polygon/m15` and `phong_polygon/m15/unit` rows (`budget-bar.md`; empty without
+/// counts).
+pub fn bar_markdown(counts: &Counts) -> String {
+    let label = format!(
+        "`{}`, m = {}",
+        MODELS[bar_cases::BAR_MODEL],
+        bar_cases::BAR_PHONG_M
+    );
+    let [vec, unit] = bar_cases::BAR_CASES.map(|c| c.0);
+    rows_markdown(
+        counts,
+        ["`Vec3` r", "`UnitVec3` r"],
+        &[(label, [vec, unit])],
+    )
+}
+
 /// One row per `(row name, model index)` of `pairs`: the model's row and the paired row, on
 /// the M4F (f32), the M0 and RV32IMC (`Fixed22`), under the column names `what`.
 fn paired_markdown(counts: &Counts, what: [&str; 2], pairs: &[(&str, usize)]) -> String {
+    let rows: Vec<(String, [&str; 2])> = pairs
+        .iter()
+        .map(|&(paired, model)| (format!("`{}`", MODELS[model]), [MODELS[model], paired]))
+        .collect();
+    rows_markdown(counts, what, &rows)
+}
+
+/// One table row per `(label, [left row, right row])` of `rows`: the two rows' medians on the
+/// M4F (f32), the M0 and RV32IMC (`Fixed22`), under the column names `what`.
+fn rows_markdown(counts: &Counts, what: [&str; 2], rows: &[(String, [&str; 2])]) -> String {
     let mut s = String::from("| call |");
     for target in ["M4F f32", "M0 `Fixed22`", "RV32IMC `Fixed22`"] {
         for w in what {
@@ -187,11 +216,10 @@ fn paired_markdown(counts: &Counts, what: [&str; 2], pairs: &[(&str, usize)]) ->
             .get(&(t.to_owned(), b.to_owned(), m.to_owned()))
             .and_then(|c| c.0))
     };
-    for &(paired, model) in pairs {
-        let id = MODELS[model];
-        let _ = write!(s, "| `{id}` |");
+    for (label, [left, right]) in rows {
+        let _ = write!(s, "| {label} |");
         for (t, b) in [("m4f", "f32"), ("m0", "fixed"), ("rv32imc", "fixed")] {
-            let _ = write!(s, " {} | {} |", get(t, b, id), get(t, b, paired));
+            let _ = write!(s, " {} | {} |", get(t, b, left), get(t, b, right));
         }
         s.push('\n');
     }

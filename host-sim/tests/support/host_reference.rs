@@ -19,6 +19,10 @@ pub(crate) struct HostBackend {
     pub(crate) host: fn(model: usize) -> Vec<Sample>,
     /// The demo shade evaluated on the host in the same backend.
     pub(crate) demo: fn() -> Vec<DemoShade>,
+    /// The bars' `Vec3` case (`bar_cases`) evaluated on the host in the same backend.
+    pub(crate) bar: fn() -> Vec<Sample>,
+    /// The tolerance of the bars' case (`phong_polygon` at `bar_cases::BAR_PHONG_M`).
+    pub(crate) bar_tolerance: fn() -> f64,
 }
 
 /// One demo shade on the host: (case, input, colour).
@@ -38,10 +42,15 @@ pub(crate) fn round_f32(x: f64) -> f64 {
 /// Phong-type models (every case here is well conditioned: no point near a polygon's plane
 /// or a sphere's surface).
 pub(crate) fn tol_f32(model: &str) -> f64 {
+    tol_f32_at(model, cases::PHONG_M)
+}
+
+/// [`tol_f32`] for the Phong exponent `m`.
+pub(crate) fn tol_f32_at(model: &str, m: u32) -> f64 {
     let phong =
         model.starts_with("phong") || model.starts_with("glossy") || model.ends_with("phong_peak");
     2e-6 + if phong {
-        f64::from(cases::PHONG_M) * 2f64.powi(-24)
+        f64::from(m) * 2f64.powi(-24)
     } else {
         0.0
     }
@@ -75,6 +84,8 @@ pub(crate) fn backends() -> Vec<HostBackend> {
             tolerance: tol_f32,
             host: host_eval::<f32>,
             demo: demo_host::<f32>,
+            bar: bar_rows::host_eval::<f32>,
+            bar_tolerance: || tol_f32_at("phong_polygon", bar_cases::BAR_PHONG_M),
         },
         HostBackend {
             name: "f32-fast",
@@ -84,6 +95,8 @@ pub(crate) fn backends() -> Vec<HostBackend> {
             tolerance: tol_fast,
             host: host_eval::<Fast32>,
             demo: demo_host::<Fast32>,
+            bar: bar_rows::host_eval::<Fast32>,
+            bar_tolerance: || tol_fast("phong_polygon"),
         },
         HostBackend {
             name: "fixed",
@@ -93,6 +106,8 @@ pub(crate) fn backends() -> Vec<HostBackend> {
             tolerance: tol_fast,
             host: host_eval::<Fixed22>,
             demo: demo_host::<Fixed22>,
+            bar: bar_rows::host_eval::<Fixed22>,
+            bar_tolerance: || tol_fast("phong_polygon"),
         },
     ]
 }

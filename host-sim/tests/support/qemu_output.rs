@@ -139,12 +139,12 @@ pub const EMPTY_SLACK: u32 = 2;
 /// No count wrapped: the firmware subtracts the empty region's count from each raw TIM2
 /// difference and stops with a `FAIL` line if a region reads less; were it to wrap instead,
 /// the count would be within `empty` of 2^32. No call here comes near 2^31 instructions, so
-/// every count of a `V`, `A`, `D`, `S` or `Q` line must be below it.
+/// every count of a `V`, `U`, `W`, `B`, `A`, `D`, `S` or `Q` line must be below it.
 pub fn check_no_wrap(short: &str, out: &str, failures: &mut Vec<String>) {
     for l in out.lines() {
         let f: Vec<&str> = l.split_whitespace().collect();
         let fields: &[usize] = match f.first().copied() {
-            Some("V") | Some("D") | Some("U") | Some("W") => &[4],
+            Some("V") | Some("D") | Some("U") | Some("W") | Some("B") => &[4],
             Some("A") => &[5],
             Some("S") => &[3],
             Some("Q") => &[5, 6],
