@@ -1,7 +1,8 @@
-//! The polygon's Phong term at the exponent of issues 12 and 13's bars (m = 15; the budget
-//! table's Phong cases run at [`cases::PHONG_M`], 16), counted on the targets as the `B`
-//! lines: the `phong_polygon` case's quad, shading point and directions, with the direction
-//! as a `Vec3` (normalized by the call) and as a [`UnitVec3`] (normalized before the count).
+//! The polygon's Phong term as issues 12 and 13 set their bars, `PolygonLight::<_, 4>::phong`
+//! at m = 15 (the budget table's Phong cases run at [`cases::PHONG_M`], 16, and hold their
+//! quad in a `PolygonLight<_, 8>`), counted on the targets as the `B` lines: the
+//! `phong_polygon` case's quad, shading point and directions, with the direction as a `Vec3`
+//! (normalized by the call) and as a [`UnitVec3`] (normalized before the count).
 //!
 //! An odd exponent takes other paths than an even one (the edges' angles, the recurrence from
 //! `k = 1`), so the bars are measured at their own exponent rather than inferred from the
@@ -18,8 +19,8 @@ use arealight::{PhongLobe, PolygonLight, Real, UnitVec3, Vec3};
 
 use super::cases::{self, Backend, Dirs, Meter, Sample, MODELS, QUAD};
 
-/// The exponent of the bars: `PolygonLight::<_, 4>::phong` at m = 15 (issue 12: 600 Cortex-M4F
-/// instructions in f32; issue 13: 8 000 Cortex-M0 instructions in `Fixed22`).
+/// The exponent of the bars: `PolygonLight::<_, 4>::phong` on a quad at m = 15 (issue 12:
+/// 600 Cortex-M4F instructions in f32; issue 13: 8 000 Cortex-M0 instructions in `Fixed22`).
 pub const BAR_PHONG_M: u32 = 15;
 
 /// The model these cases measure (`phong_polygon`), an index into [`MODELS`].
@@ -31,9 +32,12 @@ pub const BAR_CASES: [(&str, bool); 2] = [
     ("phong_polygon/m15/unit", true),
 ];
 
-/// The light and lobe of the cases, built once per backend.
+/// The light and lobe of the cases, built once per backend: the bars' `PolygonLight<_, 4>`
+/// (the table's cases hold their quad in a `PolygonLight<_, 8>`, whose call the Cortex-M0
+/// executes in 9 to 38 instructions more at the median: the capacity changes the code LLVM
+/// generates).
 pub struct BarLights<T: Real> {
-    quad: PolygonLight<T, 8>,
+    quad: PolygonLight<T, 4>,
     lobe: PhongLobe<T>,
     p: Vec3<T>,
 }

@@ -173,13 +173,13 @@ pub fn unit_markdown(counts: &Counts) -> String {
     paired_markdown(counts, ["`Vec3` n", "`UnitVec3` n"], &cases::UNIT_CASES)
 }
 
-/// `phong_polygon` at the exponent of issues 12 and 13's bars (`bar_cases.rs`: m = 15), with
-/// the reflection direction as a `Vec3` and as a `UnitVec3`, from the QEMU harness's
-/// `phong_polygon/m15` and `phong_polygon/m15/unit` rows (`budget-bar.md`; empty without
-/// counts).
+/// `phong_polygon` as issues 12 and 13 set their bars (`bar_cases.rs`: a `PolygonLight<_, 4>`,
+/// m = 15), with the reflection direction as a `Vec3` and as a `UnitVec3`, from the QEMU
+/// harness's `phong_polygon/m15` and `phong_polygon/m15/unit` rows (`budget-bar.md`; empty
+/// without counts).
 pub fn bar_markdown(counts: &Counts) -> String {
     let label = format!(
-        "`{}`, m = {}",
+        "`{}` (`PolygonLight<_, 4>`), m = {}",
         MODELS[bar_cases::BAR_MODEL],
         bar_cases::BAR_PHONG_M
     );
