@@ -11,6 +11,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use super::bar_cases::{run_bar, BarLights, BAR_CASES};
 use super::cases::{Backend, Sample, RING};
+use super::qemu_output::scalar_call;
 use super::{backends, ring_dirs, Plain, Row};
 
 /// Row index of the first bar case (after the world cases).
@@ -21,22 +22,10 @@ type Calls = HashMap<(String, String, usize), (u32, u64)>;
 
 /// Parses the `B` lines.
 fn lines(out: &str) -> Calls {
-    let mut got = HashMap::new();
-    for l in out.lines() {
-        let f: Vec<&str> = l.split_whitespace().collect();
-        if f.len() != 6 || f[0] != "B" {
-            continue;
-        }
-        let (Ok(input), Ok(count), Ok(bits)) = (
-            f[3].parse::<usize>(),
-            f[4].parse::<u32>(),
-            u64::from_str_radix(f[5], 16),
-        ) else {
-            continue;
-        };
-        got.insert((f[1].to_owned(), f[2].to_owned(), input), (count, bits));
-    }
-    got
+    out.lines()
+        .filter_map(|l| scalar_call(l, &["B"]))
+        .map(|(_, backend, row, input, count, bits)| ((backend, row, input), (count, bits)))
+        .collect()
 }
 
 /// The `Vec3` case evaluated in `T` with its inputs rounded by `round` (`T = f64`: the

@@ -136,6 +136,24 @@ pub fn check_counter(triple: &str, s: &[(String, u32)]) -> Result<String, String
 /// `counter::EMPTY_SLACK`.
 pub const EMPTY_SLACK: u32 = 2;
 
+/// The fields of a one-value call line `<kind> <backend> <name> <input> <count> <value bits
+/// as hex>` (the `V`, `W` and `B` lines of a scalar case) whose kind is one of `kinds`: `(kind,
+/// backend, name, input, count, bits)`, or `None` for any other line.
+pub fn scalar_call(l: &str, kinds: &[&str]) -> Option<(String, String, String, usize, u32, u64)> {
+    let f: Vec<&str> = l.split_whitespace().collect();
+    if f.len() != 6 || !kinds.contains(&f[0]) {
+        return None;
+    }
+    Some((
+        f[0].to_owned(),
+        f[1].to_owned(),
+        f[2].to_owned(),
+        f[3].parse().ok()?,
+        f[4].parse().ok()?,
+        u64::from_str_radix(f[5], 16).ok()?,
+    ))
+}
+
 /// No count wrapped: the firmware subtracts the empty region's count from each raw TIM2
 /// difference and stops with a `FAIL` line if a region reads less; were it to wrap instead,
 /// the count would be within `empty` of 2^32. No call here comes near 2^31 instructions, so

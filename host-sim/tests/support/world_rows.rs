@@ -9,6 +9,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use super::cases::{Sample, MODELS, RING};
+use super::qemu_output::scalar_call;
 use super::world_cases::WORLD_CASES;
 use super::Row;
 
@@ -20,25 +21,12 @@ type Calls = HashMap<(String, String, String, usize), (u32, f64)>;
 
 /// Parses the `V` and `W` lines (one channel: every world case is scalar).
 fn lines(out: &str) -> Calls {
-    let mut got = HashMap::new();
-    for l in out.lines() {
-        let f: Vec<&str> = l.split_whitespace().collect();
-        if f.len() != 6 || !(f[0] == "V" || f[0] == "W") {
-            continue;
-        }
-        let (Ok(input), Ok(count), Ok(bits)) = (
-            f[3].parse::<usize>(),
-            f[4].parse::<u32>(),
-            u64::from_str_radix(f[5], 16),
-        ) else {
-            continue;
-        };
-        got.insert(
-            (f[0].to_owned(), f[1].to_owned(), f[2].to_owned(), input),
-            (count, f64::from_bits(bits)),
-        );
-    }
-    got
+    out.lines()
+        .filter_map(|l| scalar_call(l, &["V", "W"]))
+        .map(|(kind, backend, model, input, count, bits)| {
+            ((kind, backend, model, input), (count, f64::from_bits(bits)))
+        })
+        .collect()
 }
 
 /// Checks the `W` lines of one target's output against the plain cases' f64 references
