@@ -22,8 +22,9 @@
 //! W <backend> <model> <input> <instructions> <value bits as hex>
 //! ```
 //!
-//! and, on the same backends again, the cases of [`bar_cases::BAR_CASES`] (`phong_polygon` at
-//! the bars' exponent m = 15, with a `Vec3` and with a `UnitVec3`),
+//! and, on the same backends again, the cases of [`bar_cases::BAR_CASES`] (`phong_polygon` as
+//! issues 12 and 13 set their bars, a `PolygonLight<_, 4>` at m = 15, with a `Vec3` and with a
+//! `UnitVec3`),
 //!
 //! ```text
 //! B <backend> <row> <input> <instructions> <value bits as hex>
@@ -337,9 +338,9 @@ const ONLY: Option<&str> = option_env!("QEMU_BUDGET_ONLY");
 /// the demo shader, the alternatives, the scene), both (`main`), only the world lights
 /// (`world`: the `W` lines), or only the bars' cases (`bar`: the `B` lines, apart for the
 /// same reason as the world lights). `host-sim/tests/qemu_budget.rs` builds the Cortex-M0 image as
-/// `models`, `extras` and `world` (all of it no longer fits the micro:bit's 256 KB; each
-/// part is checked on the micro:bit alone) and the others as `main` and `world`, and reads
-/// their lines as one image's. The world lights are an image apart on every target: they
+/// `models`, `extras`, `world` and `bar` (all of it no longer fits the micro:bit's 256 KB;
+/// each part is checked on the micro:bit alone) and the others as `main`, `world` and `bar`,
+/// and reads their lines as one image's. The world lights are an image apart on every target: they
 /// share the plain lights' functions, which then have two callers, and LLVM no longer
 /// inlines them into the plain kernels (measured: the M4F `polygon_lambert` row 703 -> 713
 /// instructions, `phong_polygon` 1 941 -> 1 961, in one image). A constant: the part left
