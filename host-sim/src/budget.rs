@@ -9,7 +9,8 @@
 //! counts, code bytes, errors; the README embeds it and CI compares it), `DIR/budget-unit.md`
 //! (the calls that take a normal, with a `Vec3` and with a `UnitVec3`), `DIR/budget-world.md`
 //! (the positional lights in world coordinates against plain ones), `DIR/budget-bar.md`
-//! (`phong_polygon` at issues 12 and 13's exponent, m = 15), `DIR/budget-host.md`
+//! (`phong_polygon` as issues 12 and 13 set their bars: a `PolygonLight<_, 4>` at m = 15),
+//! `DIR/budget-host.md`
 //! (the host times, one machine's) and `DIR/budget.png` (host time against max error, log-log,
 //! Pareto front highlighted).
 //!

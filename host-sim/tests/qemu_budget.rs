@@ -123,11 +123,11 @@ fn qemu_binary(triple: &str) -> &'static str {
 
 /// The parts the Cortex-M0 image is built as (`QEMU_BUDGET_PART` of `boards/qemu-budget`):
 /// every backend's models, then the demo shader, the alternatives and the scene, then the
-/// world lights, then the bars' cases (`phong_polygon` at m = 15, apart for the same reason
-/// as the world lights: [`PARTS`]). The whole image came within 450 bytes of the micro:bit's 256 KB; the models
-/// alone take about 200 KB. (Measured when split: every value bit for bit the whole image's,
-/// and the counts within 0.4 % of it but for `sky_ground` and `sh9_irradiance` with a unit
-/// normal, -3.4 % and +2.7 %: LLVM inlines a little differently into the smaller image.)
+/// world lights, then the bars' cases (`phong_polygon` at m = 15, apart for the same reason as the
+/// world lights: [`PARTS`]). The whole image came within 450 bytes of the micro:bit's 256 KB; the
+/// models alone take about 200 KB. (Measured when split: every value bit for bit the whole image's,
+/// and the counts within 0.4 % of it but for `sky_ground` and `sh9_irradiance` with a unit normal,
+/// -3.4 % and +2.7 %: LLVM inlines a little differently into the smaller image.)
 const M0_PARTS: [&str; 4] = ["models", "extras", "world", "bar"];
 
 /// The parts of the other targets' images: everything but the world lights, then those,
