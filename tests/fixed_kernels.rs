@@ -72,3 +72,30 @@ fn div_u32_and_mul_u32_match_the_operators() {
     assert_eq!(1.0f64.div_u32(3), 1.0 / 3.0);
     assert_eq!(1.0f32.mul_u32(7), 7.0);
 }
+
+/// The unit vectors of `Fixed22` (`Vec3::to_unit`: the rescaling to `[1, 2)`, the sum of
+/// squares, the normalizations' reciprocal square root, three products) against f64's
+/// direction of the same rounded vector: 400 000 random vectors of five magnitudes from 0.01
+/// to 7, within 3 units of `2^-22` a component (measured: 2.01; 6.05 before the rescaling to
+/// `[1, 2)` and the scalings rounded to nearest, when sums of squares near 1/4 lost four
+/// times the relative precision and every scaling rounded down).
+#[test]
+fn unit_vectors_are_within_three_units() {
+    let mut rng = Rng::new(0x0123_4567);
+    let mut worst = 0f64;
+    for i in 0..400_000 {
+        let scale = [0.01, 0.3, 1.0, 3.0, 7.0][i % 5];
+        let v = [0; 3].map(|_| F::from_f64(rng.range(-scale, scale)));
+        let Some(u) = arealight::Vec3::new(v[0], v[1], v[2]).to_unit() else {
+            continue;
+        };
+        let w = v.map(|c| c.to_f64());
+        let len = (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt();
+        let u = u.into_inner().to_f64();
+        for k in 0..3 {
+            worst = worst.max((u[k] - w[k] / len).abs() * 4_194_304.0);
+        }
+    }
+    println!("[maxerr] Fixed22 unit vector components vs f64: {worst:.2} units of 2^-22");
+    assert!(worst <= 3.0, "{worst} units");
+}

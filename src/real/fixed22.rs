@@ -57,6 +57,7 @@
 //! | SH9 irradiance's `k0 + sum k[i] m[i]` (8 terms, `|m| <= 1.5`: the monomials of a unit normal) | per term 4 partial products (`k` split at bit 16, `m` at bit 11, once for the three channels) summed exactly in four `i32`s, rounded down once; 64-bit arithmetic only beyond about 256 (cold) | exact `floor`, saturated (the crate's unit tests) | 705 instead of 1434 instructions a `UnitVec3` call |
 //! | `mul_u32(n)`, `n < 512` | two 16 x 9-bit products | bit-identical to `* from_u32(n)` | |
 //! | `sqrt`, `rsqrt`, `sqrt_rsqrt` | one core: `x = m 4^j`, `m` in [1, 4); a quadratic start per eighth of `[1, 4)` (24-entry table, relative 2^-15.8), one Newton step for `1/sqrt m` in `u32` (relative 2^-29.5); `sqrt = m (1/sqrt m)`; all rounded to nearest | sqrt 1 LSB; rsqrt 1 LSB + 2^-28 relative; 0 for `x <= 0`, rsqrt MAX below `2^-18` | sqrt 0.707 LSB (every input; 0.679 on the random ones), rsqrt 0.553 |
+//! | unit vectors (`Vec3::to_unit`, `normalize`; the models' directions) | rescaled by a power of two to a largest component in `[1, 2)`, the sum of squares in `[1, 12]` (three exact products), `1/sqrt` of it from the same start rounded to 16 bits and one Newton step of four `MULS` (`normalize::unit_rsqrt`, relative 2^-28), three products | 3 LSB a component against f64 of the rounded vector (`tests/fixed_kernels.rs`); `y` within 2^-28 on every sum of squares (`fixed22::tests`) | 2.01 LSB (400 000 random vectors); about 210 M0 instructions with the rescaling (`hemi_const`'s `Vec3` row, 250, less its `UnitVec3` row, 40) |
 //! | `atan2` | octant reduction to `t = n/d` in [0, 1], the ratio from the division's reciprocal (`recip_core`, Q31); a cubic piece of `atan` per 32nd of [0, 1] (512-byte table), each product as wide as its term needs; in Q30 (kernel error 3.4e-9) | 1 LSB; `atan2(0, 0) = 0`; `atan2(-y, x) = -atan2(y, x)` exactly | 0.516 LSB (was 0.542); ~190 instead of ~465 instructions |
 //! | `arc_ratio` (`acos(c)/sqrt(1 - c^2)` for `c` in [0, 1]: the polygon Lambert edge term's `theta/sin(theta)`) | `x = 1 - c`; a cubic piece per 16th of [0, 1] (256-byte table, Chebyshev interpolants in Q22), Horner's rule with exact floors (`mul_bits_le2`); `c` clamped to [0, 1] | 3.9e-7 (1.62 LSB) on every `c` in [0, 1] (`tests/fixed_exhaustive.rs`, in the suite) | 1.610 LSB; 3 products (a degree-8 polynomial in Q25 took 8, within 5.4e-7) |
 //! | `sin`, `cos` | reduction by `pi/2` with a Q38 `pi/2`, minimax polynomials of degree 7 (sin) and 8 (cos) in Q30 on `[-pi/4, pi/4]` | 1 LSB for `|x| <= 64`; within `[-1, 1]` (+2 LSB) everywhere | 0.522 LSB |
@@ -259,7 +260,7 @@ use elementary::*;
 pub(crate) use kernels::recip_q32;
 use kernels::*;
 use normalize::{
-    magnitude_top, rescale_by_top, rescale_by_top_exp, unit_rsqrt, unit_scale, unit_sqrt_rsqrt,
+    magnitude_top, rescale_by_top, rescale_for_unit, unit_rsqrt, unit_scale, unit_sqrt_rsqrt,
     unscale_length,
 };
 
@@ -426,8 +427,8 @@ impl Real for Fixed22 {
     #[inline(always)]
     ///
     /// The squares and the three scalings by `1/|v|` use `mul_bits_le2`: after the
-    /// rescaling every component is at most 2 (`rescale_by_top`) and `1/|v|` at most 2 (the
-    /// largest component is at least 1/2), so the exact product needs no saturation test and
+    /// rescaling every component is at most 2 (`rescale_for_unit`) and `1/|v|` at most 1 (the
+    /// largest component is at least 1), so the exact product needs no saturation test and
     /// the sum of squares (at most 12) none either: the same bits as `*` and `+`, about 100
     /// fewer Cortex-M0 instructions a call; and each product takes three 32-bit `MULS`
     /// instead of four (factors up to 2), about 24 fewer. The length goes back to `v`'s scale
@@ -436,18 +437,18 @@ impl Real for Fixed22 {
     /// take it, 9 367 -> 9 365 with a `UnitVec3`).
     fn normalize3(v: [Self; 3]) -> Option<([Self; 3], Self)> {
         let top = magnitude_top(v, Self::TINY)?;
-        let ([x, y, z], k) = rescale_by_top_exp(v, top);
+        let ([x, y, z], k) = rescale_for_unit(v, top);
         let (len, inv) = unit_sqrt_rsqrt(unit_scale(x, y, z));
-        let s = |c: Self| Fixed22::from_bits(mul_bits_le2(c.to_bits(), inv.to_bits()));
+        let s = |c: Self| Fixed22::from_bits(mul_bits_le2_round(c.to_bits(), inv.to_bits()));
         Some(([s(x), s(y), s(z)], unscale_length(len, k)))
     }
     /// The default's body, with the rescaling by its `m` (see `normalize3`).
     #[inline(always)]
     fn unit3(v: [Self; 3]) -> Option<[Self; 3]> {
         let top = magnitude_top(v, Self::TINY)?;
-        let ([x, y, z], _) = rescale_by_top(v, top);
+        let ([x, y, z], _) = rescale_for_unit(v, top);
         let r = unit_rsqrt(unit_scale(x, y, z));
-        let s = |c: Self| Fixed22::from_bits(mul_bits_le2(c.to_bits(), r.to_bits()));
+        let s = |c: Self| Fixed22::from_bits(mul_bits_le2_round(c.to_bits(), r.to_bits()));
         Some([s(x), s(y), s(z)])
     }
     #[inline(always)]

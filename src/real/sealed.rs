@@ -38,6 +38,23 @@ pub trait Sealed: Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = 
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
     }
+    /// The camera's clip coordinates: an offset `d` from the eye (components below 16 in
+    /// magnitude, as between points within the coordinate limit) along one of its unit axes.
+    /// The floats: [`dot3_small`](Sealed::dot3_small)'s bits. [`Fixed22`](super::Fixed22)
+    /// sums the three exact products and rounds once, to within 7/8 of a unit of `2^-22`
+    /// (`kernels::dot3_unit_round`), where `dot3_small`'s three floors lose up to 3 units.
+    #[cfg(feature = "raster")]
+    #[inline(always)]
+    fn dot3_axis(d: [Self; 3], axis: [Self; 3]) -> Self {
+        Self::dot3_small(d, axis)
+    }
+    /// `a * b` rounded to nearest: the floats' product; [`Fixed22`](super::Fixed22) rounds
+    /// half up where `*` rounds down (both saturate). The camera's projection scales.
+    #[cfg(feature = "raster")]
+    #[inline(always)]
+    fn mul_nearest(a: Self, b: Self) -> Self {
+        a * b
+    }
     /// [`mul_small`](Sealed::mul_small) for factors of at most 2 in magnitude, plus `2^-6`
     /// (unit vectors' components, their cross products and quadratic monomials, cosines and
     /// sines and `1 +- c` of them): the same bits;

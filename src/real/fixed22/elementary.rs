@@ -284,6 +284,40 @@ pub(super) fn rsqrt_core_at(v: u32, j2: u32) -> (u32, u32, u32) {
     (m, j2 / 2, y)
 }
 
+/// [`rsqrt_core_at`] for the normalizations, whose sums of squares `v` lie in `[2^20, 2^26)`
+/// (`normalize::unit_scale`) and whose results are `Fixed22` values below 4 (at most 24
+/// significant bits): the same `(m, j)`, and `y` to a relative `2^-28` (measured over every
+/// such `v` by `fixed22::tests`: `2^-28.45`) instead of `2^-29.5`, for about 30 Cortex-M0
+/// instructions fewer. The start rounded to 16 bits, `Y` in `[2^15, 2^16)` (Q16),
+/// so that the Newton step's `m Y^2` is two products by a 16-bit factor, each of two 32-bit
+/// `MULS` (the general core's two exact high words take eight):
+///
+/// 1. `t = floor(m Y / 2^16)`: `m Y 2^-46 = sqrt(m / 2^30)` up to the start's error, so `t`
+///    is in `[2^30, 2^31]` (halves of `m` times `Y`, each below `2^32`);
+/// 2. `q = floor(t Y / 2^15)`, `m Y^2` in Q31, near `2^31` (`t`'s halves times `Y`: `t / 2^16
+///    Y` is about `2^30`);
+/// 3. `c = 2^31 - q` (wrapping): `1 - m Y^2` in Q31, `|c| < 2^17.1` (the start's `2^-15.8`
+///    and the rounding's `2^-16`);
+/// 4. `y = Y 2^16 + Y (c / 8) / 2^13`, saturated: `Y (1 + (1 - m Y^2)/2)` in Q32 (`Y (c / 8)`
+///    below `2^30.1`).
+///
+/// Error: the step's own `1.5 e0^2` (`e0 <= 2^-14.9`: `2^-29.2`) and the floors of `t`, `q`
+/// and `c / 8` (at most `2^-28` in `1 - m Y^2`, half of it in `y`). The normalizations round
+/// their results to `Fixed22`'s `2^-22`, so `y`'s error shows only where a result lies
+/// within about `2^-5` of a rounding step of the exact core's.
+#[inline(always)]
+pub(super) fn rsqrt_core_unit(v: u32, j2: u32) -> (u32, u32, u32) {
+    let m = v << (30 - j2);
+    // The start in Q30, below 2^30, rounded to Q16: at most 2^16 - 1 after the clamp.
+    let yy = ((rsqrt_seed(m) + (1 << 13)) >> 14).min(0xFFFF);
+    let t = (m >> 16) * yy + (((m & 0xFFFF) * yy) >> 16);
+    let q = (((t >> 16) * yy) << 1).wrapping_add(((t & 0xFFFF) * yy) >> 15);
+    let c = (1u32 << 31).wrapping_sub(q) as i32;
+    let delta = (yy as i32 * (c >> 3)) >> 13;
+    let y = (yy << 16).saturating_add_signed(delta);
+    (m, j2 / 2, y)
+}
+
 /// `(31 - clz(v)) & !1` for `v > 0`, from comparisons where `v` lies in `[2^20, 2^26)` (the
 /// normalizations' sums of squares: see `unit_scale`), from [`clz`] elsewhere (total; never
 /// taken there). About 6 instead of 20 Cortex-M0 instructions.

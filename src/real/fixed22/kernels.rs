@@ -73,6 +73,21 @@ pub(super) fn mul_bits_le2(a: i32, b: i32) -> i32 {
     mid >> 6
 }
 
+/// [`mul_bits_le2`] rounded to nearest (half up) instead of down: `floor(a b / 2^22 + 1/2)`,
+/// exactly (the sum before the shift is `floor(a b / 2^16)`, and adding 32 there commutes with
+/// the floors). The normalizations' three scalings by `1/|v|` (`unit3`, `normalize3`,
+/// `sphere_ratios`): half a unit of `2^-22` less bias a component, for one addition.
+#[inline(always)]
+pub(super) fn mul_bits_le2_round(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let mid = ah
+        .wrapping_mul(b)
+        .wrapping_add(al.wrapping_mul(bh))
+        .wrapping_add(((al as u32).wrapping_mul(bl as u32) >> 16) as i32);
+    mid.wrapping_add(32) >> 6
+}
+
 /// The cosine `a . b` of two unit vectors in raw Q22 bits (every component at most `2^22 +
 /// 2^6` in magnitude, which every `UnitVec3` keeps: a few units of `2^-22` past 1 at most),
 /// through Q15: each component rounded half up to `q = (x + 2^6) >> 7` (at most `2^15` in
@@ -222,6 +237,58 @@ fn dot8_saturated(k0: i32, a: i32, t: i32) -> i32 {
 #[inline(always)]
 pub(super) fn split_11(m: i32) -> (i32, i32) {
     (m >> 11, m & 0x7FF)
+}
+
+/// [`mul_bits`] rounded to nearest (half up) instead of down: `floor(a b / 2^22 + 1/2)`,
+/// exactly (`32` added to `w` before its shift commutes with the floors, as in
+/// [`mul_bits_le2_round`]), saturated. For the camera's scaling of its clip coordinates, once
+/// a vertex.
+#[cfg(feature = "raster")]
+#[inline(always)]
+pub(super) fn mul_bits_round(a: i32, b: i32) -> i32 {
+    let (ah, al) = (a >> 16, a & 0xFFFF);
+    let (bh, bl) = (b >> 16, b & 0xFFFF);
+    let hh = ah * bh;
+    let m1 = ah * bl;
+    let m2 = al * bh;
+    let ll = (al as u32) * (bl as u32);
+    let h = hh + (m1 >> 16) + (m2 >> 16);
+    // w + 32 < 3 2^16: the same bound on (w + 32) / 2^6 as `mul_bits`' on w / 2^6.
+    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16) + 32;
+    if (h.wrapping_add(1 << 21) as u32) <= (1 << 22) - 3 {
+        (h << 10) + (w >> 6) as i32
+    } else {
+        mul_saturated(h, w)
+    }
+}
+
+/// `a . u` in raw Q22 bits, rounded to nearest within `7/8` of a unit, for an offset `a`
+/// (components below 16 in magnitude: `|a_k| < 2^26` raw) and a unit vector `u` (components
+/// at most `1 + 2^-16`, which every normalization keeps). Each product is taken exactly to
+/// `floor(a_k u_k / 2^19)` (three bits below Q22: `floor(a u / 2^16) = ah uh 2^16 + mid` as in
+/// [`mul_bits_small`], so `floor(a u / 2^19) = ah uh 2^13 + (mid >> 3)`, with `|ah uh| <=
+/// 2^10 2^7`), the three summed (at most `16 sqrt 3 (1 + 2^-16) < 28` by Cauchy-Schwarz:
+/// below `2^30` in Q25, so the wrapping partial sums end exact) and rounded half up to Q22
+/// once: within `(-7/8, 1/2]` of a unit of the exact `a . u`, where
+/// [`dot3_small`](crate::real::sealed::Sealed::dot3_small)'s three floors lose up to 3.
+/// For the camera's clip coordinates, once a vertex: the same four 32-bit products a
+/// component as `mul_bits_small`.
+#[cfg(feature = "raster")]
+#[inline(always)]
+pub(super) fn dot3_unit_round(a: [i32; 3], u: [i32; 3]) -> i32 {
+    let q25 = |k: usize| {
+        let (ah, al) = (a[k] >> 16, a[k] & 0xFFFF);
+        let (uh, ul) = (u[k] >> 16, u[k] & 0xFFFF);
+        let mid = (ah.wrapping_mul(ul))
+            .wrapping_add(al.wrapping_mul(uh))
+            .wrapping_add(((al as u32).wrapping_mul(ul as u32) >> 16) as i32);
+        (ah.wrapping_mul(uh) << 13).wrapping_add(mid >> 3)
+    };
+    q25(0)
+        .wrapping_add(q25(1))
+        .wrapping_add(q25(2))
+        .wrapping_add(4)
+        >> 3
 }
 
 /// The saturating end of [`mul_bits`]: `H 2^10 + w/2^6` clamped to the `i32` range.

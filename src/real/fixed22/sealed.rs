@@ -157,10 +157,10 @@ impl crate::real::sealed::Sealed for Fixed22 {
     #[inline(always)]
     fn sphere_ratios(v: [Self; 3], r: Self) -> Option<SphereRatios<Self>> {
         let top = magnitude_top(v, Self::TINY)?;
-        let ([x, y, z], k) = rescale_by_top_exp(v, top);
+        let ([x, y, z], k) = rescale_for_unit(v, top);
         let s2 = unit_scale(x, y, z);
         let (len, inv) = unit_sqrt_rsqrt(s2);
-        let sc = |c: Self| Fixed22::from_bits(mul_bits_le2(c.to_bits(), inv.to_bits()));
+        let sc = |c: Self| Fixed22::from_bits(mul_bits_le2_round(c.to_bits(), inv.to_bits()));
         let u = [sc(x), sc(y), sc(z)];
         // `len * d` for `d = 2^-k`: `*`'s floor (an arithmetic shift right) or its saturation
         // to MAX (a shift left of `len < 2^24` by at most 8, then the clamp), the same bits.
@@ -197,6 +197,21 @@ impl crate::real::sealed::Sealed for Fixed22 {
     fn dot3_small(a: [Self; 3], b: [Self; 3]) -> Self {
         let p = |k: usize| mul_bits_small(a[k].to_bits(), b[k].to_bits());
         Fixed22::from_bits(p(0).wrapping_add(p(1)).wrapping_add(p(2)))
+    }
+    /// `kernels::dot3_unit_round`: the exact sum rounded once (the axes are unit vectors).
+    #[cfg(feature = "raster")]
+    #[inline(always)]
+    fn dot3_axis(d: [Self; 3], axis: [Self; 3]) -> Self {
+        Fixed22::from_bits(dot3_unit_round(
+            d.map(Fixed22::to_bits),
+            axis.map(Fixed22::to_bits),
+        ))
+    }
+    /// `kernels::mul_bits_round`.
+    #[cfg(feature = "raster")]
+    #[inline(always)]
+    fn mul_nearest(a: Self, b: Self) -> Self {
+        Fixed22::from_bits(mul_bits_round(a.to_bits(), b.to_bits()))
     }
     /// `|x| <= L` for the limit's raw bits `L = 2^24` as `(x + L) as u32 <= 2 L`: one
     /// unsigned comparison a component (`i32::MIN`, the saturated `-512`, wraps to `2^31 +

@@ -4,7 +4,7 @@
 
 extern crate std;
 
-use super::normalize::rescale_by_top;
+use super::normalize::rescale_for_unit;
 use super::*;
 
 /// A random unit vector as the crate makes one (`unit3` of a random vector of any magnitude),
@@ -153,6 +153,25 @@ fn recip_core_is_within_three_units_below_everywhere() {
     recip_core_within(1);
 }
 
+/// `rsqrt_core_unit` (the normalizations' reciprocal square root) on every sum of squares it
+/// can be given, `v` in `[2^20, 2^26)`: the general core's `(m, j)`, and `y` within `2^-28`
+/// of `2^32 / sqrt(m / 2^30)` relative (measured: `2^-28.45`; the general core's `2^-29.5`).
+#[test]
+fn normalization_rsqrt_core_is_within_its_bound() {
+    use super::elementary::{even_top_of_square_sum, rsqrt_core_at, rsqrt_core_unit};
+    let mut worst = 0f64;
+    for v in (1u32 << 20)..(1u32 << 26) {
+        let j2 = even_top_of_square_sum(v);
+        let (m, j, y) = rsqrt_core_unit(v, j2);
+        let (m0, j0, _) = rsqrt_core_at(v, j2);
+        assert_eq!((m, j), (m0, j0), "{v}");
+        let exact = 4_294_967_296.0 / (f64::from(m) / 1_073_741_824.0).sqrt();
+        worst = worst.max((f64::from(y) - exact).abs() / exact);
+    }
+    std::println!("[rsqrt_core_unit] max relative error 2^{:.2}", worst.log2());
+    assert!(worst <= 2f64.powi(-28), "2^{}", worst.log2());
+}
+
 /// `mul_bits_small` against `mul_bits` (both orders): every `a` in `[-lim, lim]` on a
 /// stride of `step`, against the range's edges, the halves' edges and `a`'s fractions.
 fn small_products_on_a_stride(lim: i32, step: i32) {
@@ -194,9 +213,15 @@ fn small_products_and_normalizations_are_bit_identical() {
         let want = if m <= Fixed22::TINY {
             None
         } else {
-            let ([x, y, z], d) = rescale_by_top(v, m.to_bits() as u32);
-            let (len, inv) = (x * x + y * y + z * z).sqrt_rsqrt();
-            Some(([x * inv, y * inv, z * inv], len * d))
+            let ([x, y, z], k) = rescale_for_unit(v, m.to_bits() as u32);
+            let d = Fixed22::from_bits(1 << (22 - k));
+            let (len, inv) = unit_sqrt_rsqrt(x * x + y * y + z * z);
+            // The scalings rounded to nearest (`mul_bits_le2_round`), in i64.
+            let r = |c: Fixed22| {
+                let p = i64::from(c.to_bits()) * i64::from(inv.to_bits());
+                Fixed22::from_bits(((p + (1 << 21)) >> 22) as i32)
+            };
+            Some(([r(x), r(y), r(z)], len * d))
         };
         assert_eq!(Fixed22::normalize3(v), want, "{v:?}");
         assert_eq!(Fixed22::unit3(v), want.map(|(u, _)| u), "{v:?}");
@@ -536,6 +561,10 @@ fn high_words_of_unsigned_products_are_exact() {
 /// The Lambert-type cosine through Q15, with a light's prepared axis, and `sky_ground`'s
 /// products by it.
 mod cosine;
+
+/// The camera's rounded product and dot product against the exact ones.
+#[cfg(feature = "raster")]
+mod camera;
 
 /// The Phong polygon's edge plane from unit directions against f64.
 #[cfg(all(feature = "polygon", feature = "phong"))]
