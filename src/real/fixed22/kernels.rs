@@ -18,6 +18,14 @@ use super::FRAC;
 /// per product (in the QEMU harness).
 #[inline(always)]
 pub(super) fn mul_bits(a: i32, b: i32) -> i32 {
+    mul_bits_plus::<0>(a, b)
+}
+
+/// [`mul_bits`]' computation with `BIAS` (0 or 32) added to `w` before its shift:
+/// `floor(a b / 2^22 + BIAS / 2^6)` exactly (the addition commutes with the floors), so 32
+/// rounds to nearest (half up). `w + 32 < 3 2^16` keeps the bound on `H 2^10 + w / 2^6`.
+#[inline(always)]
+fn mul_bits_plus<const BIAS: u32>(a: i32, b: i32) -> i32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     // |ah|, |bh| <= 2^15 and al, bl < 2^16: every partial product fits its type.
@@ -26,7 +34,7 @@ pub(super) fn mul_bits(a: i32, b: i32) -> i32 {
     let m2 = al * bh;
     let ll = (al as u32) * (bl as u32);
     let h = hh + (m1 >> 16) + (m2 >> 16);
-    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16);
+    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16) + BIAS;
     // H in [-2^21, 2^21 - 3]: H 2^10 + w/2^6 (< 3 2^10) fits an i32.
     if (h.wrapping_add(1 << 21) as u32) <= (1 << 22) - 3 {
         (h << 10) + (w >> 6) as i32
@@ -64,13 +72,7 @@ pub(super) fn mul_bits_small(a: i32, b: i32) -> i32 {
 /// fewer a product: `ah bh` and its shift and addition go.
 #[inline(always)]
 pub(super) fn mul_bits_le2(a: i32, b: i32) -> i32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    let mid = ah
-        .wrapping_mul(b)
-        .wrapping_add(al.wrapping_mul(bh))
-        .wrapping_add(((al as u32).wrapping_mul(bl as u32) >> 16) as i32);
-    mid >> 6
+    mul_bits_le2_plus::<0>(a, b)
 }
 
 /// [`mul_bits_le2`] rounded to nearest (half up) instead of down: `floor(a b / 2^22 + 1/2)`,
@@ -79,13 +81,19 @@ pub(super) fn mul_bits_le2(a: i32, b: i32) -> i32 {
 /// `sphere_ratios`): half a unit of `2^-22` less bias a component, for one addition.
 #[inline(always)]
 pub(super) fn mul_bits_le2_round(a: i32, b: i32) -> i32 {
+    mul_bits_le2_plus::<32>(a, b)
+}
+
+/// [`mul_bits_le2`]'s computation with `BIAS` added before the final shift by 6.
+#[inline(always)]
+fn mul_bits_le2_plus<const BIAS: i32>(a: i32, b: i32) -> i32 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     let mid = ah
         .wrapping_mul(b)
         .wrapping_add(al.wrapping_mul(bh))
         .wrapping_add(((al as u32).wrapping_mul(bl as u32) >> 16) as i32);
-    mid.wrapping_add(32) >> 6
+    mid.wrapping_add(BIAS) >> 6
 }
 
 /// The cosine `a . b` of two unit vectors in raw Q22 bits (every component at most `2^22 +
@@ -240,26 +248,11 @@ pub(super) fn split_11(m: i32) -> (i32, i32) {
 }
 
 /// [`mul_bits`] rounded to nearest (half up) instead of down: `floor(a b / 2^22 + 1/2)`,
-/// exactly (`32` added to `w` before its shift commutes with the floors, as in
-/// [`mul_bits_le2_round`]), saturated. For the camera's scaling of its clip coordinates, once
-/// a vertex.
+/// exactly, saturated. For the camera's scaling of its clip coordinates, once a vertex.
 #[cfg(feature = "raster")]
 #[inline(always)]
 pub(super) fn mul_bits_round(a: i32, b: i32) -> i32 {
-    let (ah, al) = (a >> 16, a & 0xFFFF);
-    let (bh, bl) = (b >> 16, b & 0xFFFF);
-    let hh = ah * bh;
-    let m1 = ah * bl;
-    let m2 = al * bh;
-    let ll = (al as u32) * (bl as u32);
-    let h = hh + (m1 >> 16) + (m2 >> 16);
-    // w + 32 < 3 2^16: the same bound on (w + 32) / 2^6 as `mul_bits`' on w / 2^6.
-    let w = ((m1 & 0xFFFF) + (m2 & 0xFFFF)) as u32 + (ll >> 16) + 32;
-    if (h.wrapping_add(1 << 21) as u32) <= (1 << 22) - 3 {
-        (h << 10) + (w >> 6) as i32
-    } else {
-        mul_saturated(h, w)
-    }
+    mul_bits_plus::<32>(a, b)
 }
 
 /// `a . u` in raw Q22 bits, rounded to nearest within `7/8` of a unit, for an offset `a`
