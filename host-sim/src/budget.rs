@@ -51,7 +51,7 @@ mod points;
 #[path = "../../boards/qemu-budget/src/world_cases.rs"]
 mod world_cases;
 
-use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
+use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS};
 
 mod chart;
 mod tables;
@@ -244,11 +244,7 @@ fn collect(f: impl FnOnce(&mut dyn FnMut(Sample))) -> Vec<Sample> {
 
 /// Host ns per call of `call` on the ring inputs: median over inputs, median of 5 runs.
 fn time_ring(reps: u32, mut call: impl FnMut(&mut Timer, Dirs) -> Vec<Sample>) -> f64 {
-    let ring = |i| cases::ring(i);
-    let dirs = Dirs {
-        count: RING,
-        get: &ring,
-    };
+    let dirs = cases::ring_dirs();
     let mut runs: Vec<f64> = (0..5)
         .map(|_| {
             let mut per: Vec<f64> = call(&mut Timer { reps }, dirs)

@@ -76,7 +76,7 @@ use std::process::{Command, ExitCode, Stdio};
 use std::time::Duration;
 
 use arealight::{Fast32, Fixed22, Real};
-use cases::{Backend, Dirs, Lights, Meter, Sample, MODELS, RING};
+use cases::{Backend, Lights, Meter, Sample, MODELS, RING};
 
 #[path = "support/budget_checks.rs"]
 mod budget_checks;

@@ -146,6 +146,14 @@ pub struct Dirs<'a> {
     pub get: &'a dyn Fn(usize) -> [f64; 3],
 }
 
+/// The ring of [`RING`] directions ([`ring`]) as a [`Dirs`]: every run's inputs.
+pub fn ring_dirs() -> Dirs<'static> {
+    Dirs {
+        count: RING,
+        get: &ring,
+    }
+}
+
 /// Counts (or times) one kernel call.
 pub trait Meter {
     /// Calls `f` (once on the target; the host may repeat it) and returns its result with the

@@ -124,7 +124,7 @@ use cortex_m_rt::entry;
 #[cfg(target_arch = "arm")]
 use cortex_m_semihosting::debug;
 
-use cases::{Dirs, Lights, Meter, Sample, MODELS, RING};
+use cases::{Lights, Meter, Sample, MODELS, RING};
 /// The instruction counter of this target: TIM2 (ARM), `instret` (RISC-V).
 #[cfg(target_arch = "riscv32")]
 use counter::Instret as Tim2;
@@ -188,11 +188,7 @@ fn emit_as(line: &mut Line, kind: &str, backend: &str, s: &Sample) {
 /// <value>` lines).
 #[inline(never)]
 fn run_points<T: Real, M: Meter>(name: &str, meter: &mut M) {
-    let ring = |i| cases::ring(i);
-    let dirs = Dirs {
-        count: RING,
-        get: &ring,
-    };
+    let dirs = cases::ring_dirs();
     let mut line = Line::new();
     for k in points::KS {
         let sampled = points::Sampled::<T>::new(k, cases::PHONG_M);
@@ -231,11 +227,7 @@ fn run_backend<T: cases::Backend, M: Meter>(meter: &mut M, line: &mut Line) {
             ),
         ),
     };
-    let ring = |i| cases::ring(i);
-    let dirs = Dirs {
-        count: RING,
-        get: &ring,
-    };
+    let dirs = cases::ring_dirs();
     for (model, id) in MODELS.iter().enumerate() {
         if !cases::supports(name, id) || !selected(id) {
             continue;
@@ -271,11 +263,7 @@ fn run_world<T: cases::Backend, M: Meter>(meter: &mut M) {
         return;
     }
     let name = T::NAME;
-    let ring = |i| cases::ring(i);
-    let dirs = Dirs {
-        count: RING,
-        get: &ring,
-    };
+    let dirs = cases::ring_dirs();
     let lights = match world_cases::WorldLights::<T>::new() {
         Ok(l) => l,
         Err(e) => fail(
@@ -303,11 +291,7 @@ fn run_bar<T: cases::Backend, M: Meter>(meter: &mut M) {
         return;
     }
     let name = T::NAME;
-    let ring = |i| cases::ring(i);
-    let dirs = Dirs {
-        count: RING,
-        get: &ring,
-    };
+    let dirs = cases::ring_dirs();
     let lights = match bar_cases::BarLights::<T>::new(|x| x) {
         Ok(l) => l,
         Err(e) => fail(

@@ -119,12 +119,7 @@ impl Meter for Plain {
     }
 }
 
-pub(crate) fn ring_dirs() -> Dirs<'static> {
-    Dirs {
-        count: RING,
-        get: &cases::ring,
-    }
-}
+pub(crate) use cases::ring_dirs;
 
 /// The f64 reference of every model, with the inputs rounded as `round` does.
 pub(crate) fn reference(round: fn(f64) -> f64) -> Result<Vec<Vec<Sample>>, String> {
