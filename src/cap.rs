@@ -340,7 +340,7 @@ impl<T: Real> CapLight<T> {
     /// Fallback: 0 for a zero or non-finite `n`.
     ///
     /// <!-- BEGIN acc-cap_lambert_hermite: target/accuracy/model-cap_lambert_hermite.md -->
-    /// Measured: against f64, f32 2.5e-7, Fast32 5.8e-6, Fixed22 1.2e-6; 325 752 cases in all
+    /// Measured: against f64, f32 2.5e-7, Fast32 5.8e-6, Fixed22 1.3e-6; 325 752 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-cap_lambert_hermite -->
     #[inline]
@@ -532,7 +532,7 @@ impl<T: Real> SphereLight<T> {
     /// <!-- BEGIN acc-sphere_lambert: target/accuracy/model-sphere_lambert.md -->
     /// Measured: f64 within 4.4e-16 of its reference (the independent quadrature); against f64,
     /// f32 4.6e-7 (ill-conditioned: 1.7e-6), Fast32 6.4e-6 (ill-conditioned: 6.2e-6), Fixed22
-    /// 2.7e-5; 80 588 cases in all (`docs/accuracy.md`).
+    /// 2.6e-5; 80 588 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sphere_lambert -->
     #[inline]
     pub fn lambert(&self, p: Vec3<T>, n: impl Direction<T>) -> T {

@@ -62,7 +62,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-hemi_const: target/accuracy/model-hemi_const.md -->
     /// Measured: f64 within 5.6e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.6e-7, Fast32 1.6e-7, Fixed22 1.9e-5; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.6e-7, Fast32 1.6e-7, Fixed22 2.0e-5; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_const -->
     #[inline]
     pub fn lambert_const(&self, n: impl Direction<T>) -> T {
@@ -82,7 +82,7 @@ impl<T: Real> HemisphereLight<T> {
     ///
     /// <!-- BEGIN acc-hemi_cos: target/accuracy/model-hemi_cos.md -->
     /// Measured: f64 within 6.7e-16 of its reference (the independent quadrature); against f64,
-    /// f32 1.5e-7, Fast32 2.5e-6, Fixed22 8.1e-7; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.5e-7, Fast32 2.5e-6, Fixed22 7.4e-7; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-hemi_cos -->
     #[inline]
     pub fn lambert_cos(&self, n: impl Direction<T>) -> T {
@@ -139,7 +139,7 @@ impl<T: Real> OvercastSky<T> {
     ///
     /// <!-- BEGIN acc-sky_overcast: target/accuracy/model-sky_overcast.md -->
     /// Measured: f64 within 1.1e-15 of its reference (the independent quadrature); against f64,
-    /// f32 1.7e-7, Fast32 1.7e-6, Fixed22 3.3e-6; 68 626 cases in all (`docs/accuracy.md`).
+    /// f32 1.7e-7, Fast32 1.7e-6, Fixed22 3.6e-6; 68 626 cases in all (`docs/accuracy.md`).
     /// <!-- END acc-sky_overcast -->
     #[inline]
     pub fn lambert(&self, n: impl Direction<T>) -> T {

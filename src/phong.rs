@@ -361,7 +361,7 @@ impl<T: Real> SphereLight<T> {
     /// <!-- BEGIN acc-phong_sphere: target/accuracy/model-phong_sphere.md -->
     /// Measured: f64 within 7.9e-14 of its reference (the independent quadrature); against f64,
     /// f32 1.4e-6 at m = 255 (ill-conditioned: 6.1e-6 at m = 255), Fast32 7.6e-6 at m = 255
-    /// (ill-conditioned: 8.2e-6 at m = 255), Fixed22 1.0e-4 at m = 255; 62 580 cases in all
+    /// (ill-conditioned: 8.2e-6 at m = 255), Fixed22 1.1e-4 at m = 255; 62 580 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_sphere -->
     #[inline]

@@ -75,11 +75,11 @@
 //! <!-- BEGIN budget-world: target/budget/budget-world.md -->
 //! | call | M4F f32: plain | M4F f32: world | M0 `Fixed22`: plain | M0 `Fixed22`: world | RV32IMC `Fixed22`: plain | RV32IMC `Fixed22`: world |
 //! |---|---:|---:|---:|---:|---:|---:|
-//! | `sphere_lambert` | 76 | 206 | 695 | 890 | 596 | 728 |
-//! | `sphere_lambert_hermite` | 83 | 214 | 710 | 911 | 589 | 733 |
-//! | `polygon_lambert` | 498 | 1088 | 1922 | 2519 | 1517 | 1866 |
-//! | `phong_sphere` | 480 | 601 | 4679 | 4890 | 3748 | 3894 |
-//! | `phong_polygon` | 1809 | 2537 | 8666 | 9508 | 6752 | 7190 |
+//! | `sphere_lambert` | 76 | 206 | 628 | 822 | 550 | 682 |
+//! | `sphere_lambert_hermite` | 83 | 214 | 643 | 843 | 543 | 687 |
+//! | `polygon_lambert` | 498 | 1088 | 1888 | 2484 | 1493 | 1842 |
+//! | `phong_sphere` | 480 | 601 | 4612 | 4822 | 3702 | 3848 |
+//! | `phong_polygon` | 1809 | 2537 | 8397 | 9239 | 6564 | 7006 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole

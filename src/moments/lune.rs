@@ -52,7 +52,7 @@ pub fn try_lune_normalization<T: Real>(w: Vec3<T>, v: Vec3<T>, m: u32) -> Result
 ///
 /// <!-- BEGIN acc-lune_normalization: target/accuracy/model-lune_normalization.md -->
 /// Measured: f64 within 4.4e-14 of its reference (the independent quadrature); against f64,
-/// f32 3.9e-7, Fast32 7.6e-6, Fixed22 1.6e-6 at m = 0; 33 508 cases in all
+/// f32 3.9e-7, Fast32 7.6e-6, Fixed22 1.4e-6 at m = 0; 33 508 cases in all
 /// (`docs/accuracy.md`).
 /// <!-- END acc-lune_normalization -->
 #[inline]

@@ -578,7 +578,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// Measured: f64 within 3.1e-13 of its reference (the independent quadrature, adversarial);
     /// against f64, f32 1.6e-6 at m = 255 (ill-conditioned: 1.8e-6 at m = 255; near boundary:
     /// 1.2e-4 at m = 255), Fast32 5.2e-6 at m = 255 (ill-conditioned: 3.8e-6 at m = 63; near
-    /// boundary: 1.2e-4 at m = 255), Fixed22 1.0e-5 at m = 255; 61 089 cases in all
+    /// boundary: 1.2e-4 at m = 255), Fixed22 1.3e-5 at m = 255; 61 089 cases in all
     /// (`docs/accuracy.md`).
     /// <!-- END acc-phong_polygon -->
     #[inline]
