@@ -67,7 +67,7 @@ pub(crate) use arc::arc_axis_f;
 #[cfg(feature = "moments")]
 pub(crate) use arc::arc_axis_form;
 #[cfg(any(feature = "phong", feature = "moments"))]
-pub(crate) use arc::cos_power_sums;
+pub(crate) use arc::{clamp_excursion, cos_power_sums};
 #[cfg(feature = "phong")]
 pub(crate) use clip::for_each_clipped_edge_by;
 pub(crate) use clip::{for_each_clipped_edge, for_each_unclipped_edge, ApexFan};

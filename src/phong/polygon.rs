@@ -5,9 +5,10 @@
 
 use crate::lobe::negligible_terms;
 use crate::polygon::{
-    arc_axis_f, cos_power_sums, floats_ball_below, for_each_clipped_edge, for_each_clipped_edge_by,
-    near_limit, offset_products, phong_near_log2, phong_negligible_with, products_in_range,
-    ClippedEdge, PolygonLight, Uncached, VertexDirections, CROSSING, NEGLIGIBLE_HEIGHTS,
+    arc_axis_f, clamp_excursion, cos_power_sums, floats_ball_below, for_each_clipped_edge,
+    for_each_clipped_edge_by, near_limit, offset_products, phong_near_log2, phong_negligible_with,
+    products_in_range, ClippedEdge, PolygonLight, Uncached, VertexDirections, CROSSING,
+    NEGLIGIBLE_HEIGHTS,
 };
 use crate::unit::Direction;
 use crate::{Error, PhongLobe, Real, UnitVec3, Vec3};
@@ -41,7 +42,10 @@ fn phong_edge_terms<T: Real>(
     // of `phong_polygon`; the same bits.)
     let [cx, cy, _] = T::unit3([dot, glen, T::ZERO])?;
     let cs = Vec3::new(cx, cy, T::ZERO);
-    let (cos_x, sin_x) = (cs.x.clamp(-T::ONE, T::ONE), cs.y.clamp01());
+    let (cos_x, sin_x) = (
+        clamp_excursion(cs.x, |v| v.clamp(-T::ONE, T::ONE)),
+        clamp_excursion(cs.y, T::clamp01),
+    );
     // x itself (odd m): on a float backend with an arc ratio (f32 and `Fast32` with an FPU)
     // and within a right angle, `R(cos x) sin x` from the pair, as `fan_half_angle` does;
     // elsewhere the arc tangent (fixed point keeps its bits: its unit edges take the ratio in
@@ -119,15 +123,29 @@ fn fan_half_angle<T: Real>(y: T, x: T) -> T {
     y.atan2(x)
 }
 
-/// The smallest `cos x` for which fixed point takes an edge's Phong terms from its endpoints'
+/// The smallest `cos x` for which an edge's Phong terms come from its endpoints'
 /// unit directions ([`phong_unit_edge_terms`]): `2^-16`, far above the rounding of their dot
 /// product, so that such an edge has `ua.ub > 0` (never the test's `beside`, which needs
 /// `ua.ub < 0`) and lies away from `G`'s cancellation near the edge's line between its
 /// endpoints.
 const UNIT_MIN_COS_LOG2: u32 = 16;
 
-/// Fixed point's [`phong_edge_terms`] for an edge within a right angle (`cos x` at least
-/// [`UNIT_MIN_COS_LOG2`]), from the unit directions `a` and `b` of its endpoints, which the walk
+/// The largest `m` for which the floats with an arc ratio (f32 and `Fast32` on targets with an
+/// FPU) take [`phong_unit_edge_terms`]. Its plane comes from `a x b` of the rounded unit
+/// directions, whose direction is off by about `EPSILON/sin x` (the offsets' `ua x d` keeps
+/// it to an ULP), and the recurrence raises that to the power `m`: the absolute error of an
+/// edge's terms grows as `m EPSILON` where the offsets' form stays near `EPSILON`. Measured
+/// against f64 (`tests/phong.rs`, `tests/adversarial.rs`): with every `m` on the unit path,
+/// m = 0 to 3 were more accurate (the adversarial m = 0 1.8e-7 -> 1.0e-7), m = 63 and 64 up
+/// to 1.2 times less, and a random triangle at m = 255 2.05e-6 (the offsets' 1.2e-6). Up to
+/// 32 it is taken: the Cortex-M4F's f32 `phong_polygon` at m = 15 (the bars' quad) 1 715 ->
+/// 1 634 instructions, about 27 an edge, from the offsets' products, range test and two
+/// normalizations it spares.
+const FLOAT_UNIT_EDGE_MAX_M: u32 = 32;
+
+/// [`phong_edge_terms`] for an edge within a right angle (`cos x` at least
+/// [`UNIT_MIN_COS_LOG2`]; fixed point at every `m`, the floats with an arc ratio up to
+/// [`FLOAT_UNIT_EDGE_MAX_M`]), from the unit directions `a` and `b` of its endpoints, which the walk
 /// normalizes anyway: `cos x = a.b`, `sin x = |G|` with `G = a x b`, and the plane's normal
 /// `G/|G|` enters only through `r.G/|G|` and the arc's `r.(G x a)/|G| = (r.b - (a.b)
 /// r.a)/|G|`, all three from one reciprocal square root of `G` scaled by a power of two (the
@@ -136,7 +154,8 @@ const UNIT_MIN_COS_LOG2: u32 = 16;
 /// normal's three products and its triple product (nine). `None` (the caller takes
 /// [`phong_edge_terms`]) for a wider edge or a `G` without a direction.
 ///
-/// Accuracy: `a x b` is within a few `2^-22` absolute, and `r.b - (a.b) r.a` likewise, so
+/// Accuracy: `a x b` is within a few `2^-22` absolute (the floats: a few `EPSILON`), and
+/// `r.b - (a.b) r.a` likewise, so
 /// the plane's two cosines within that over `sin x`; every term they enter is a multiple of
 /// `x` (the arc's length), so the error stays a few `2^-22` absolute per edge (against f64,
 /// `tests/fixed.rs`: 4.7e-6 -> 5.5e-6 at m = 64, 1.08e-5 -> 1.0e-5 at m = 255 when the
@@ -159,7 +178,10 @@ fn phong_unit_edge_terms<T: Real>(
     // a`), without `gu` or the triple product (the sealed `edge_plane_terms`).
     let d = rb - T::mul_le2(c, ra);
     let (rg, rp, s) = T::edge_plane_terms([g.x, g.y, g.z], r.array(), d)?;
-    let (cos_x, sin_x) = (c.min(T::ONE), s.clamp01());
+    let (cos_x, sin_x) = (
+        clamp_excursion(c, |v| v.min(T::ONE)),
+        clamp_excursion(s, T::clamp01),
+    );
     // x = R(cos x) sin x by the arc ratio where the backend has one (fixed point: 3 products
     // for the arc tangent's division and polynomial), else the arc tangent.
     let angle = || match cos_x.arc_ratio() {
@@ -167,7 +189,7 @@ fn phong_unit_edge_terms<T: Real>(
         None => sin_x.atan2(cos_x),
     };
     Some(phong_arc_terms(
-        (rg, || rp.clamp(-T::ONE, T::ONE)),
+        (rg, || clamp_excursion(rp, |v| v.clamp(-T::ONE, T::ONE))),
         (cos_x, sin_x),
         angle,
         ra,
@@ -466,7 +488,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             // the J terms and the fan alike.
             let terms = match (start, end) {
                 (Some(a), Some(b)) => {
-                    let unit = if T::RESOLUTION > T::ZERO {
+                    let unit = if T::RESOLUTION > T::ZERO
+                        || (m <= FLOAT_UNIT_EDGE_MAX_M && T::ONE.arc_ratio().is_some())
+                    {
                         phong_unit_edge_terms(a, b, ru, m)
                     } else {
                         None
@@ -528,7 +552,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// polygon).
     /// On `Fixed22` an edge within a right angle takes `cos x`, `sin x` and the plane's normal
     /// from its ends' unit directions instead of the offsets' products and the pair's
-    /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`).
+    /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`); so do
+    /// f32 and `Fast32` on targets with an FPU up to m = 32, beyond which the offsets' form is
+    /// the more accurate (`FLOAT_UNIT_EDGE_MAX_M`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
     /// 8 664 instructions (median of the budget's 16 cases, a clipped case the test does not
     /// prove; 8 664 to 10 720 where the reflection meets the quad; at m = 15, in a build of
@@ -559,7 +585,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 809 (1 803 before the
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 613 (at m = 15, the bars'
+    /// `PolygonLight<_, 4>`, 1 519, with a `UnitVec3` 1 492; 1 809 and, at m = 15, 1 714
+    /// before the edges within a right angle took the unit directions' form and the arc's
+    /// clamps went off the floats' path, `polygon::clamp_excursion`; 1 803 before the
     /// fixed-point walk took its heights from the negligibility test, whose code it shares;
     /// 1 797 before the fixed-point horizon arcs did; 1 839 before the fan
     /// triangles' half angles went from the arc tangent to the arc ratio, `fan_half_angle`; at
