@@ -156,47 +156,82 @@ fn vertex_dir<T: Real, D: VertexDirections<T>>(
     dirs: &mut D,
     i: usize,
     v: Vec3<T>,
-    p: Vec3<T>,
+    (p, r_min): (Vec3<T>, T),
     r: UnitVec3<T>,
 ) -> Option<(UnitVec3<T>, T)> {
-    let a = dirs.get(i, v.offset_from(p))?;
+    let u = v.offset_from(p);
+    if T::RESOLUTION > T::ZERO && T::all_within([u.x, u.y, u.z], r_min) {
+        return None;
+    }
+    let a = dirs.get(i, u)?;
     Some((a, r.dot_unit(a)))
 }
 
-/// The floats' `(J sum, fan)` of a ring `verts` wholly above the horizon of `r` (every
-/// vertex's `(v - p).r` at least 0, as the walk tests it) whose every edge takes
-/// [`phong_unit_edge_terms`]: each vertex's unit direction and `r.a` once, each edge's terms
-/// from them, in the walk's order from vertex 0, so the same bits as the clipping walk
-/// ([`for_each_clipped_edge`]) gives such a ring, without its crossing tests, its edge
-/// records and the offsets it passes. `None` (the caller walks) where a vertex lies below the
-/// horizon, a direction is undefined or an edge is a right angle or wider. The heights come
-/// first, so that a ring the walk must clip costs one dot product a vertex up to the first
-/// below. Measured on the Cortex-M4F, f32, the bars' quad at m = 15 (QEMU budget): a wholly
-/// lit call 1 595 -> 1 132 instructions (with a `UnitVec3` 1 569 -> 1 097), one the walk
-/// clips 22 to 26 more.
-#[inline(always)]
-fn unclipped_unit_terms<T: Real, D: VertexDirections<T>>(
-    verts: &[Vec3<T>],
-    p: Vec3<T>,
+/// [`unclipped_unit_terms`] as a call (fixed point): inlined, its frame joined the walk's,
+/// and the Cortex-M0 scene benchmark of the QEMU budget overflowed the micro:bit's 16 KiB of
+/// stack.
+#[inline(never)]
+fn unclipped_unit_terms_call<T: Real, D: VertexDirections<T>>(
+    ring: (&[Vec3<T>], Vec3<T>, T),
     r: UnitVec3<T>,
     m: u32,
     dirs: &mut D,
 ) -> Option<(T, T)> {
-    let rv = r.array();
-    let above = |v: &Vec3<T>| {
+    unclipped_unit_terms(ring, r, m, dirs)
+}
+
+/// Whether every vertex of `verts` lies on or above the horizon of `r` seen from `p`, as the
+/// walk tests it (`height`: fixed point's from the negligibility test where it has them).
+#[inline(always)]
+fn ring_above<T: Real>(
+    verts: &[Vec3<T>],
+    p: Vec3<T>,
+    height: &impl Fn(usize, Vec3<T>) -> T,
+    r: UnitVec3<T>,
+) -> bool {
+    let mut i = 0;
+    verts.iter().all(|v| {
         let u = v.offset_from(p);
-        T::dot3_small([u.x, u.y, u.z], rv) >= T::ZERO
-    };
-    if !verts.iter().all(above) {
-        return None;
-    }
+        if T::RESOLUTION > T::ZERO {
+            let h = height(i, u);
+            i += 1;
+            h >= T::ZERO
+        } else {
+            T::dot3_small([u.x, u.y, u.z], r.array()) >= T::ZERO
+        }
+    })
+}
+
+/// The `(J sum, fan)` of a ring `verts` wholly above the horizon of `r` (every vertex's
+/// height `(v - p).r` at least 0, as the walk tests it: the caller's [`ring_above`]) whose
+/// every edge takes [`phong_unit_edge_terms`] (fixed point, and the
+/// floats where [`float_unit_edges`]): each vertex's unit direction and `r.a` once, each
+/// edge's terms from them, in the walk's order from vertex 0, so the same bits as the clipping
+/// walk ([`for_each_clipped_edge`], [`for_each_clipped_edge_by`]) gives such a ring, without
+/// its crossing tests, its edge records and the offsets it passes. `None` (the caller walks)
+/// where a vertex lies below the horizon, a direction is undefined, an edge is a right angle
+/// or wider, or (fixed point) a vertex lies within `r_min` of `p`, which the walk reports.
+/// The heights come first ([`ring_above`]), so that a ring the walk must clip costs a height
+/// a vertex up to the first below. Measured (QEMU budget, the bars' quad at m = 15): on the Cortex-M4F in
+/// f32 a wholly lit call 1 595 -> 1 132 instructions (with a `UnitVec3` 1 569 -> 1 097), one
+/// the walk clips 22 to 26 more; on the Cortex-M0 in `Fixed22` 8 681 -> 7 819 (with a
+/// `UnitVec3` 8 475 -> 7 575), one the walk clips about 45 more, one with nothing above the
+/// horizon 8 more (without a `UnitVec3` only; the budget's median there 7 936 -> 7 819 and
+/// 7 747 -> 7 575).
+#[inline(always)]
+fn unclipped_unit_terms<T: Real, D: VertexDirections<T>>(
+    (verts, p, r_min): (&[Vec3<T>], Vec3<T>, T),
+    r: UnitVec3<T>,
+    m: u32,
+    dirs: &mut D,
+) -> Option<(T, T)> {
     let (&first, rest) = verts.split_first()?;
-    let a0 = vertex_dir(dirs, 0, first, p, r)?;
+    let a0 = vertex_dir(dirs, 0, first, (p, r_min), r)?;
     let (mut a, mut sum, mut fan) = (a0, T::ZERO, T::ZERO);
     let mut i = 0;
     for &v in rest {
         i += 1;
-        let b = vertex_dir(dirs, i, v, p, r)?;
+        let b = vertex_dir(dirs, i, v, (p, r_min), r)?;
         let (w, j) = phong_unit_edge_terms(a, b, r, m)?;
         fan += w;
         sum += j;
@@ -472,11 +507,24 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
             return Ok(T::ZERO);
         }
         let even = m & 1 == 0;
-        // The floats' ring wholly above the horizon with every edge within a right angle: the
-        // edges' terms from the vertices' unit directions, without the clipping walk (the
-        // same bits as the walk).
-        if T::RESOLUTION == T::ZERO && float_unit_edges::<T>(m) {
-            if let Some((sum, fan)) = unclipped_unit_terms(self.vertices(), p, ru, m, dirs) {
+        let rv = [r.x, r.y, r.z];
+        let height = |i: usize, u: Vec3<T>| match heights.get(i) {
+            Some(&h) if i < have_heights => h,
+            _ => T::dot3_small([u.x, u.y, u.z], rv),
+        };
+        // A ring wholly above the horizon with every edge within a right angle: the edges'
+        // terms from the vertices' unit directions, without the clipping walk (the same bits
+        // as the walk).
+        if (T::RESOLUTION > T::ZERO || float_unit_edges::<T>(m))
+            && ring_above(self.vertices(), p, &height, ru)
+        {
+            let ring = (self.vertices(), p, r_min);
+            let terms = if T::RESOLUTION > T::ZERO {
+                unclipped_unit_terms_call(ring, ru, m, dirs)
+            } else {
+                unclipped_unit_terms(ring, ru, m, dirs)
+            };
+            if let Some((sum, fan)) = terms {
                 let total = if even { sum + fan } else { sum };
                 return Ok((total.abs() * T::FRAC_1_TAU).clamp01());
             }
@@ -496,11 +544,6 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
         // this alone the Cortex-M4F's f32 went 1 803 -> 1 806 (1 821 with the test on their
         // walk too; 1 803 again after the walk took the heights, `for_each_clipped_edge_by`).
         let mut first: Option<(usize, (UnitVec3<T>, T))> = None;
-        let rv = [r.x, r.y, r.z];
-        let height = |i: usize, u: Vec3<T>| match heights.get(i) {
-            Some(&h) if i < have_heights => h,
-            _ => T::dot3_small([u.x, u.y, u.z], rv),
-        };
         let edge = |e: ClippedEdge<T>| {
             if e.horizon {
                 // On the horizon r.u = 0: only the k = 0 term survives, x (r.G) = +-x; for even
@@ -628,7 +671,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`); so do
     /// f32 and `Fast32` on targets with an FPU up to m = 32, beyond which the offsets' form is
     /// the more accurate (`FLOAT_UNIT_EDGE_MAX_M`).
-    /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16:
+    /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16: 8 333 instructions (with a
+    /// `UnitVec3` 8 107; at the bars' m = 15 7 819 and 7 575) since a ring wholly above the
+    /// horizon skips the walk (`unclipped_unit_terms`), 8 397 (8 203; at m = 15 7 936 and
+    /// 7 747) before, after the normalizations' cheaper reciprocal square root;
     /// 8 664 instructions (median of the budget's 16 cases, a clipped case the test does not
     /// prove; 8 664 to 10 720 where the reflection meets the quad; at m = 15, in a build of
     /// the budget at that exponent, 8 219; with a `UnitVec3` 8 436 and, at m = 15, 7 991;
