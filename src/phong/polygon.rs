@@ -214,10 +214,9 @@ fn ring_above<T: Real>(
 /// The heights come first ([`ring_above`]), so that a ring the walk must clip costs a height
 /// a vertex up to the first below. Measured (QEMU budget, the bars' quad at m = 15): on the Cortex-M4F in
 /// f32 a wholly lit call 1 595 -> 1 132 instructions (with a `UnitVec3` 1 569 -> 1 097), one
-/// the walk clips 22 to 26 more; on the Cortex-M0 in `Fixed22` 8 681 -> 7 819 (with a
-/// `UnitVec3` 8 475 -> 7 575), one the walk clips about 45 more, one with nothing above the
-/// horizon 8 more (without a `UnitVec3` only; the budget's median there 7 936 -> 7 819 and
-/// 7 747 -> 7 575).
+/// the walk clips 22 to 26 more; on the Cortex-M0 in `Fixed22` 8 681 -> 7 900 (with a
+/// `UnitVec3` 8 475 -> 7 690), one the walk clips as before (the heights are the
+/// negligibility test's), the budget's median 7 936 -> 7 900 and 7 747 -> 7 690.
 #[inline(always)]
 fn unclipped_unit_terms<T: Real, D: VertexDirections<T>>(
     (verts, p, r_min): (&[Vec3<T>], Vec3<T>, T),
@@ -671,10 +670,11 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// normalization (and, for odd `m`, `x` by the arc ratio: `phong_unit_edge_terms`); so do
     /// f32 and `Fast32` on targets with an FPU up to m = 32, beyond which the offsets' form is
     /// the more accurate (`FLOAT_UNIT_EDGE_MAX_M`).
-    /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16: 8 333 instructions (with a
-    /// `UnitVec3` 8 107; at the bars' m = 15 7 819 and 7 575) since a ring wholly above the
-    /// horizon skips the walk (`unclipped_unit_terms`), 8 397 (8 203; at m = 15 7 936 and
-    /// 7 747) before, after the normalizations' cheaper reciprocal square root;
+    /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16: 8 394 instructions (with a
+    /// `UnitVec3` 8 193; at the bars' m = 15 7 900 and 7 690; the median a clipped call, the
+    /// wholly lit ones about 780 fewer than before) since a ring wholly above the horizon
+    /// skips the walk (`unclipped_unit_terms`), 8 397 (8 203; at m = 15 7 936 and 7 747)
+    /// before, after the normalizations' cheaper reciprocal square root;
     /// 8 664 instructions (median of the budget's 16 cases, a clipped case the test does not
     /// prove; 8 664 to 10 720 where the reflection meets the quad; at m = 15, in a build of
     /// the budget at that exponent, 8 219; with a `UnitVec3` 8 436 and, at m = 15, 7 991;
