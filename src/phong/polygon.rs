@@ -671,8 +671,7 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// f32 and `Fast32` on targets with an FPU up to m = 32, beyond which the offsets' form is
     /// the more accurate (`FLOAT_UNIT_EDGE_MAX_M`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16: 8 394 instructions (with a
-    /// `UnitVec3` 8 193; at the bars' m = 15 7 900 and 7 690; the median a clipped call, the
-    /// wholly lit ones about 780 fewer than before) since a ring wholly above the horizon
+    /// `UnitVec3` 8 193; at the bars' m = 15 7 900 and 7 690; the median a clipped call) since a ring wholly above the horizon
     /// skips the walk (`unclipped_unit_terms`), 8 397 (8 203; at m = 15 7 936 and 7 747)
     /// before, after the normalizations' cheaper reciprocal square root;
     /// 8 664 instructions (median of the budget's 16 cases, a clipped case the test does not
