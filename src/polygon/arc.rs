@@ -113,24 +113,47 @@ pub(crate) fn cos_power_sums<T: Real>(
     // the dearer library call (`phong_polygon` 82 427 -> 84 772 on the Cortex-M0): the
     // conversions there.
     let mut kf = T::from_u32(k);
-    while k < n {
-        sum += t;
-        if let Some((coef, budget)) = stop {
-            if coef * cpow <= budget {
-                return (sum, T::ZERO);
+    // One step: `T(k)` into the sum, then `T(k + 2)` (or the early termination's return).
+    macro_rules! step {
+        () => {
+            sum += t;
+            if let Some((coef, budget)) = stop {
+                if coef * cpow <= budget {
+                    return (sum, T::ZERO);
+                }
+                cpow *= f;
             }
-            cpow *= f;
-        }
-        k += 2;
-        t = if SOFT_FLOAT {
-            (l + l2 + f.mul_u32(k - 1) * t).div_u32(k)
-        } else {
-            let km1 = kf + T::ONE;
-            kf += T::TWO;
-            (l + l2 + f * km1 * t) / kf
+            k += 2;
+            t = if SOFT_FLOAT {
+                (l + l2 + f.mul_u32(k - 1) * t).div_u32(k)
+            } else {
+                let km1 = kf + T::ONE;
+                kf += T::TWO;
+                (l + l2 + f * km1 * t) / kf
+            };
+            l *= g2;
+            l2 *= a2;
         };
-        l *= g2;
-        l2 *= a2;
+    }
+    // `k` and `n` have the same parity and `k <= n`: `(n - k)/2` steps. With a floating-point
+    // unit, two steps an iteration (the same operations in the same order: the same bits),
+    // which spares every other step the loop's count, test and branch and the copy of `t`
+    // the register allocator made between steps (`phong_polygon`, the bars' quad at m = 15,
+    // 28 steps: 1 132 -> 1 098 Cortex-M4F instructions, with a `UnitVec3` 1 097 -> 1 069).
+    // Soft float keeps one step an iteration (its steps are library calls: the unrolled code
+    // would double for nothing).
+    if SOFT_FLOAT {
+        while k < n {
+            step!();
+        }
+    } else {
+        while n - k >= 4 {
+            step!();
+            step!();
+        }
+        if k < n {
+            step!();
+        }
     }
     (sum, t)
 }
