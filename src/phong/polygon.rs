@@ -703,8 +703,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// with `x` by the arc tangent and 14 545 from the offsets' products; 13 696 with the `(cos x, sin x)` pair through the `Vec3::normalize` call;
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
-    /// vectors' products saturating); on the Cortex-M4F in f32, 1 231 (at m = 15, the bars'
-    /// `PolygonLight<_, 4>`, 1 132, with a `UnitVec3` 1 097; 1 613 and, at m = 15, 1 519
+    /// vectors' products saturating); on the Cortex-M4F in f32, 1 195 (at m = 15, the bars'
+    /// `PolygonLight<_, 4>`, 1 098, with a `UnitVec3` 1 069; 1 231 and, at m = 15, 1 132
+    /// before the recurrence took two steps an iteration, `polygon::arc`; 1 613 and, at m = 15, 1 519
     /// before a ring wholly above the horizon skipped the clipping walk,
     /// `unclipped_unit_terms`; 1 809 and, at m = 15, 1 714 before the edges within a right
     /// angle took the unit directions' form and the arc's clamps went off the floats' path,
