@@ -79,7 +79,7 @@
 //! | `sphere_lambert_hermite` | 83 | 214 | 643 | 843 | 543 | 687 |
 //! | `polygon_lambert` | 498 | 1088 | 1888 | 2484 | 1493 | 1842 |
 //! | `phong_sphere` | 480 | 601 | 4612 | 4822 | 3702 | 3848 |
-//! | `phong_polygon` | 1809 | 2537 | 8397 | 9239 | 6564 | 7006 |
+//! | `phong_polygon` | 1195 | 1951 | 8394 | 9267 | 6360 | 6871 |
 //! <!-- END budget-world -->
 //!
 //! When these rows were first counted, the differences were copied, over the polygon's whole

@@ -138,9 +138,9 @@ const UNIT_MIN_COS_LOG2: u32 = 16;
 /// against f64 (`tests/phong.rs`, `tests/adversarial.rs`): with every `m` on the unit path,
 /// m = 0 to 3 were more accurate (the adversarial m = 0 1.8e-7 -> 1.0e-7), m = 63 and 64 up
 /// to 1.2 times less, and a random triangle at m = 255 2.05e-6 (the offsets' 1.2e-6). Up to
-/// 32 it is taken: the Cortex-M4F's f32 `phong_polygon` at m = 15 (the bars' quad) 1 715 ->
-/// 1 634 instructions, about 27 an edge, from the offsets' products, range test and two
-/// normalizations it spares.
+/// 32 it is taken: the Cortex-M4F's f32 `phong_polygon` at m = 15 (the bars' quad, in a
+/// build of that case alone) 1 715 -> 1 634 instructions, about 27 an edge, from the
+/// offsets' products, range test and two normalizations it spares.
 const FLOAT_UNIT_EDGE_MAX_M: u32 = 32;
 
 /// Whether a float backend takes [`phong_unit_edge_terms`] at the exponent `m`: one with an
@@ -212,11 +212,14 @@ fn ring_above<T: Real>(
 /// where a vertex lies below the horizon, a direction is undefined, an edge is a right angle
 /// or wider, or (fixed point) a vertex lies within `r_min` of `p`, which the walk reports.
 /// The heights come first ([`ring_above`]), so that a ring the walk must clip costs a height
-/// a vertex up to the first below. Measured (QEMU budget, the bars' quad at m = 15): on the Cortex-M4F in
-/// f32 a wholly lit call 1 595 -> 1 132 instructions (with a `UnitVec3` 1 569 -> 1 097), one
-/// the walk clips 22 to 26 more; on the Cortex-M0 in `Fixed22` 8 681 -> 7 900 (with a
-/// `UnitVec3` 8 475 -> 7 690), one the walk clips as before (the heights are the
-/// negligibility test's), the budget's median 7 936 -> 7 900 and 7 747 -> 7 690.
+/// a vertex up to the first below. Measured (QEMU budget, the bars' quad at m = 15, in a build
+/// of that case alone): on the Cortex-M4F in f32 a wholly lit call 1 595 -> 1 132
+/// instructions (with a `UnitVec3` 1 569 -> 1 097), one the walk clips 22 to 26 more; on the
+/// Cortex-M0 in `Fixed22` 8 681 -> 7 900 (with a `UnitVec3` 8 475 -> 7 690), one the walk
+/// clips as before (the heights are the negligibility test's), the budget's median 7 936 ->
+/// 7 900 and 7 747 -> 7 690. Flash: the copy of the edge terms and the recurrence this path
+/// takes (`phong` alone, size probe) 41 492 -> 49 256 bytes on the Cortex-M0 in `Fixed22`,
+/// 30 552 -> 34 224 on the Cortex-M4F in f32.
 #[inline(always)]
 fn unclipped_unit_terms<T: Real, D: VertexDirections<T>>(
     (verts, p, r_min): (&[Vec3<T>], Vec3<T>, T),
@@ -242,8 +245,8 @@ fn unclipped_unit_terms<T: Real, D: VertexDirections<T>>(
 
 /// [`phong_edge_terms`] for an edge within a right angle (`cos x` at least
 /// [`UNIT_MIN_COS_LOG2`]; fixed point at every `m`, the floats with an arc ratio up to
-/// [`FLOAT_UNIT_EDGE_MAX_M`]), from the unit directions `a` and `b` of its endpoints, which the walk
-/// normalizes anyway: `cos x = a.b`, `sin x = |G|` with `G = a x b`, and the plane's normal
+/// [`FLOAT_UNIT_EDGE_MAX_M`]), from the unit directions `a` and `b` of its endpoints, which the
+/// walk normalizes anyway: `cos x = a.b`, `sin x = |G|` with `G = a x b`, and the plane's normal
 /// `G/|G|` enters only through `r.G/|G|` and the arc's `r.(G x a)/|G| = (r.b - (a.b)
 /// r.a)/|G|`, all three from one reciprocal square root of `G` scaled by a power of two (the
 /// sealed `edge_plane_terms`). That spares the offsets' products (`ua x d`, `ua.ub`), the
@@ -671,9 +674,10 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// f32 and `Fast32` on targets with an FPU up to m = 32, beyond which the offsets' form is
     /// the more accurate (`FLOAT_UNIT_EDGE_MAX_M`).
     /// Measured on the Cortex-M0, `Fixed22`, a quad at m = 16: 8 394 instructions (with a
-    /// `UnitVec3` 8 193; at the bars' m = 15 7 900 and 7 690; the median a clipped call) since a ring wholly above the horizon
-    /// skips the walk (`unclipped_unit_terms`), 8 397 (8 203; at m = 15 7 936 and 7 747)
-    /// before, after the normalizations' cheaper reciprocal square root;
+    /// `UnitVec3` 8 193; at the bars' m = 15 7 900 and 7 690; the median a clipped call) since a
+    /// ring wholly above the horizon skips the walk (`unclipped_unit_terms`), 8 397 (8 203;
+    /// at m = 15 7 936 and 7 747) before, after the normalizations' cheaper reciprocal square
+    /// root;
     /// 8 664 instructions (median of the budget's 16 cases, a clipped case the test does not
     /// prove; 8 664 to 10 720 where the reflection meets the quad; at m = 15, in a build of
     /// the budget at that exponent, 8 219; with a `UnitVec3` 8 436 and, at m = 15, 7 991;
@@ -704,8 +708,9 @@ impl<T: Real, const N: usize> PolygonLight<T, N> {
     /// 14 790 with the offsets' products saturating, `polygon::edge::offset_products`; 14 320
     /// before the test, 20 419 with the recurrence in the type's own arithmetic and the unit
     /// vectors' products saturating); on the Cortex-M4F in f32, 1 195 (at m = 15, the bars'
-    /// `PolygonLight<_, 4>`, 1 098, with a `UnitVec3` 1 069; 1 231 and, at m = 15, 1 132
-    /// before the recurrence took two steps an iteration, `polygon::arc`; 1 613 and, at m = 15, 1 519
+    /// `PolygonLight<_, 4>`, 1 097, with a `UnitVec3` 1 068; 1 231 and, at m = 15, 1 132
+    /// before the recurrence took two steps an iteration, `polygon::arc`; 1 613 and, at m = 15,
+    /// 1 519
     /// before a ring wholly above the horizon skipped the clipping walk,
     /// `unclipped_unit_terms`; 1 809 and, at m = 15, 1 714 before the edges within a right
     /// angle took the unit directions' form and the arc's clamps went off the floats' path,
